@@ -1,0 +1,607 @@
+"""Georeferencing with ground control points: polynomial models, residuals, RMS.
+
+The lecture's "Transformações polinomiais": two Cartesian systems - map
+coordinates (x, y) of the GCPs and image coordinates of the distorted image -
+are related by polynomials u = f(x, y), v = g(x, y) of degree 1 to 3,
+
+    u = a0 + a1 x + a2 y + a3 xy + a4 x² + a5 y²        (degree 2)
+    v = b0 + b1 x + b2 y + b3 xy + b4 x² + b5 y²,
+
+whose coefficients come from a linear system built from the GCPs, solved here
+by least squares. As GDAL does, x and y are measured from the GCPs' mean, so a
+third-degree fit on UTM-sized numbers stays well conditioned; the fit is also
+scaled internally, which changes nothing but the rounding.
+
+Image coordinates follow GDAL: (col, row) = (pixel, line), continuous, with the
+image's top-left corner at (0, 0).
+"""
+
+import csv
+import io
+from dataclasses import dataclass, field
+from math import comb
+
+import numpy as np
+
+from ._checks import as_points
+
+ORDERS = (1, 2, 3)
+
+# (power of x, power of y) of every term, in the lecture's order:
+# 1, x, y, xy, x², y², then the cubic terms.
+_TERMS = ((0, 0), (1, 0), (0, 1), (1, 1), (2, 0), (0, 2), (2, 1), (1, 2), (3, 0), (0, 3))
+
+
+def _check_order(order):
+    if order not in ORDERS:
+        raise ValueError(f"polynomial order must be 1, 2 or 3 (the lecture's degrees), got {order!r}")
+    return int(order)
+
+
+def min_gcps(order):
+    """Minimum number of GCPs that determine a polynomial of this degree: (n+1)(n+2)/2.
+
+    Lecture, slide "Transformações polinomiais": the degree fixes the minimum
+    number of GCPs needed to solve the linear system.
+
+    Examples
+    --------
+    >>> [min_gcps(n) for n in (1, 2, 3)]
+    [3, 6, 10]
+    """
+    order = _check_order(order)
+    return comb(order + 2, 2)
+
+
+def term_names(order, variables=("x", "y")):
+    """Names of the polynomial's terms in the lecture's order.
+
+    Examples
+    --------
+    >>> term_names(2)
+    ['1', 'x', 'y', 'xy', 'x²', 'y²']
+    """
+    superscript = {1: "", 2: "²", 3: "³"}
+    names = []
+    for px, py in _TERMS[:min_gcps(order)]:
+        name = (variables[0] + superscript[px] if px else "") + (variables[1] + superscript[py] if py else "")
+        names.append(name or "1")
+    return names
+
+
+def design_matrix(points, order):
+    """The linear system's matrix: one row per GCP, one column per term.
+
+    Row i is (1, x_i, y_i, x_i y_i, x_i², y_i², ...) in the lecture's order,
+    for the coordinates as given (centre them first for a stable fit).
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        GCP coordinates (x, y).
+    order : {1, 2, 3}
+
+    Returns
+    -------
+    ndarray, shape (n, min_gcps(order))
+
+    Examples
+    --------
+    >>> design_matrix([[2.0, 3.0]], 2)
+    array([[1., 2., 3., 6., 4., 9.]])
+    """
+    points = as_points(points)
+    order = _check_order(order)
+    x, y = points[:, 0], points[:, 1]
+    return np.column_stack([x**px * y**py for px, py in _TERMS[:min_gcps(order)]])
+
+
+@dataclass
+class PolynomialModel:
+    """A fitted polynomial mapping from ``src`` to ``dst`` coordinates.
+
+    Call it on an (n, 2) array of src points to get the (n, 2) dst points.
+
+    Attributes
+    ----------
+    order : int
+        Degree, 1 to 3.
+    coefficients : ndarray, shape (2, m)
+        Row 0 the a_i of the first output, row 1 the b_i of the second, in the
+        lecture's term order, for src coordinates measured from ``origin``.
+    origin : ndarray, shape (2,)
+        Mean of the fitting GCPs' src coordinates (GDAL centres the same way).
+    src, dst : ndarray
+        The GCPs the model was fitted on.
+    """
+
+    order: int
+    coefficients: np.ndarray
+    origin: np.ndarray
+    scale: float
+    src: np.ndarray = field(repr=False)
+    dst: np.ndarray = field(repr=False)
+
+    def __call__(self, points):
+        points = as_points(points)
+        scaled_terms = design_matrix((points - self.origin) / self.scale, self.order)
+        return scaled_terms @ self._scaled_coefficients().T
+
+    def _scaled_coefficients(self):
+        powers = np.array([px + py for px, py in _TERMS[:self.coefficients.shape[1]]])
+        return self.coefficients * self.scale**powers
+
+    def reverse(self):
+        """The reverse model (dst -> src), fitted separately on the same GCPs, as GDAL does.
+
+        A polynomial's inverse is not a polynomial, so GDAL fits both
+        directions by least squares; so does this.
+        """
+        return fit_polynomial(self.dst, self.src, self.order)
+
+    def coefficient_table(self, names=("a", "b")):
+        """Coefficients as {"a0 (1)": value, ...}: term names in the lecture's order.
+
+        The variables are measured from the GCPs' mean (``origin``).
+        """
+        table = {}
+        for row, letter in enumerate(names):
+            for index, term in enumerate(term_names(self.order)):
+                table[f"{letter}{index} ({term})"] = float(self.coefficients[row, index])
+        return table
+
+
+def fit_polynomial(src, dst, order):
+    """Least-squares polynomial of degree ``order`` from ``src`` to ``dst`` points.
+
+    Lecture, slide "Transformações polinomiais": u = f(x, y), v = g(x, y), the
+    coefficients from the linear system of the GCPs. With exactly
+    ``min_gcps(order)`` GCPs the polynomial passes through every one.
+
+    Parameters
+    ----------
+    src : (n, 2) array_like
+        Coordinates the model is applied to (for resampling: map x, y).
+    dst : (n, 2) array_like
+        Coordinates it must reproduce (for resampling: image col, row).
+    order : {1, 2, 3}
+
+    Returns
+    -------
+    PolynomialModel
+
+    Raises
+    ------
+    ValueError
+        If the arrays are not (n, 2) of the same length, hold NaN or infinity,
+        the order is not 1-3, there are fewer GCPs than ``min_gcps(order)``,
+        or the GCPs are collinear or repeated so that the system has no unique
+        solution.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10]], dtype=float)
+    >>> model = fit_polynomial(src, src * 2 + 1, order=1)
+    >>> model([[5.0, 5.0]]).round(6)
+    array([[11., 11.]])
+    """
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    order = _check_order(order)
+    if len(src) != len(dst):
+        raise ValueError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} points")
+    needed = min_gcps(order)
+    if len(src) < needed:
+        raise ValueError(f"order {order} needs at least {needed} GCPs, got {len(src)}")
+    origin = src.mean(axis=0)
+    centred = src - origin
+    scale = float(np.abs(centred).max()) or 1.0
+    matrix = design_matrix(centred / scale, order)
+    rank = np.linalg.matrix_rank(matrix)
+    if rank < needed:
+        raise ValueError(
+            f"the GCPs do not determine an order-{order} polynomial: they are collinear, repeated "
+            f"or too clustered (rank {rank} of the {needed} needed); spread the GCPs over the image")
+    scaled, *_ = np.linalg.lstsq(matrix, dst, rcond=None)
+    powers = np.array([px + py for px, py in _TERMS[:needed]])
+    coefficients = (scaled / scale**powers[:, np.newaxis]).T
+    return PolynomialModel(order, coefficients, origin, scale, src, dst)
+
+
+def residuals(model, src, dst):
+    """Per-GCP residuals of a model: dx, dy and R_i = sqrt(dx² + dy²).
+
+    Lecture, slide "Avaliação da transformação": R_i is the distance between
+    the position the model gives and the GCP's own position, in dst units
+    (pixels when the model goes map -> image).
+
+    Returns
+    -------
+    dx, dy, distance : ndarray
+        ``model(src) - dst`` split in its two components, and its length.
+    """
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    if len(src) != len(dst):
+        raise ValueError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} points")
+    difference = model(src) - dst
+    return difference[:, 0], difference[:, 1], np.hypot(difference[:, 0], difference[:, 1])
+
+
+def rms_error(predicted, observed):
+    """The lecture's RMS: sqrt( (1/n) Σ (x_i - x̄_i)² + (y_i - ȳ_i)² ).
+
+    Lecture, slide "Avaliação da transformação". RMS = 2 means the corrected
+    pixels are on average 2 pixels from where they belong.
+
+    Examples
+    --------
+    >>> rms_error([[0, 0], [3, 4]], [[0, 0], [0, 0]])
+    3.5355339059327378
+    """
+    predicted = as_points(predicted, "predicted")
+    observed = as_points(observed, "observed")
+    if predicted.shape != observed.shape:
+        raise ValueError(f"predicted and observed must have the same shape, got {predicted.shape} and {observed.shape}")
+    return float(np.sqrt(np.mean(np.sum((predicted - observed) ** 2, axis=1))))
+
+
+def mean_error(predicted, observed, order):
+    """QGIS Georeferencer's "mean error": sqrt(Σ R_i² / (n - m)), m = min_gcps(order).
+
+    Dividing by the degrees of freedom rather than n makes it an unbiased
+    estimate of the GCPs' error, where the lecture's RMS flatters a model that
+    has nearly as many coefficients as GCPs.
+
+    Raises
+    ------
+    ValueError
+        If n <= m: with no redundant GCP the error cannot be estimated.
+    """
+    predicted = as_points(predicted, "predicted")
+    observed = as_points(observed, "observed")
+    n, m = len(predicted), min_gcps(order)
+    if n <= m:
+        raise ValueError(f"the mean error of order {order} needs more than {m} GCPs, got {n}")
+    return float(np.sqrt(np.sum((predicted - observed) ** 2) / (n - m)))
+
+
+def refine_gcps(src, dst, order, tolerance, min_gcps=None):
+    """Drop bad GCPs one by one, like ``gdalwarp -refine_gcps tolerance min_gcps``.
+
+    GDAL's ``remove_outliers`` (alg/gdal_crs.cpp): fit, find the single GCP
+    with the largest residual |model(src) - dst|; if it is at least
+    ``tolerance``, drop it and refit; stop when none is, or when only
+    ``min_gcps`` remain.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) array_like
+        GCPs; GDAL fits pixel -> map here, so its tolerance is in map units.
+    order : {1, 2, 3}
+    tolerance : float
+        Residual, in dst units, from which a GCP counts as an outlier.
+    min_gcps : int, optional
+        Never go below this many GCPs; default the order's minimum.
+
+    Returns
+    -------
+    model : PolynomialModel
+        Fitted on the kept GCPs.
+    kept : ndarray of bool, shape (n,)
+        True for the GCPs that survived.
+
+    Raises
+    ------
+    ValueError
+        As :func:`fit_polynomial`, or for a negative tolerance or a
+        ``min_gcps`` below the order's minimum.
+    """
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    order = _check_order(order)
+    floor = globals()["min_gcps"](order)
+    if min_gcps is None:
+        min_gcps = floor
+    if min_gcps < floor:
+        raise ValueError(f"min_gcps must be at least {floor} for order {order}, got {min_gcps}")
+    if not np.isfinite(tolerance) or tolerance < 0:
+        raise ValueError(f"tolerance must be a non-negative number (dst units), got {tolerance!r}")
+    kept = np.ones(len(src), dtype=bool)
+    model = fit_polynomial(src, dst, order)
+    while kept.sum() > min_gcps:
+        _, _, distance = residuals(model, src[kept], dst[kept])
+        # Residuals below float32's epsilon count as zero, as in GDAL.
+        distance = np.where(distance < np.finfo(np.float32).eps, 0.0, distance)
+        worst = int(np.argmax(distance))
+        if distance[worst] < tolerance:
+            break
+        kept[np.flatnonzero(kept)[worst]] = False
+        model = fit_polynomial(src[kept], dst[kept], order)
+    return model, kept
+
+
+def check_point_errors(src, dst, order, is_check):
+    """Errors at independent check points, for a model fitted on the other GCPs.
+
+    The RMS on the fitting GCPs flatters high degrees (with the minimum number
+    of GCPs it is zero whatever the model's quality); check points that were
+    not used in the fit tell the truth.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) array_like
+    order : {1, 2, 3}
+    is_check : (n,) array_like of bool
+        True for the check points, False for the GCPs used in the fit.
+
+    Returns
+    -------
+    model : PolynomialModel
+        Fitted on the GCPs.
+    fit_rms, check_rms : float
+        Lecture's RMS on the fitting GCPs and on the check points.
+    """
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    is_check = np.asarray(is_check, dtype=bool)
+    if is_check.shape != (len(src),):
+        raise ValueError(f"is_check must have one flag per GCP ({len(src)}), got shape {is_check.shape}")
+    if not is_check.any():
+        raise ValueError("is_check marks no check point; mark at least one GCP as a check point")
+    model = fit_polynomial(src[~is_check], dst[~is_check], order)
+    fit_rms = rms_error(model(src[~is_check]), dst[~is_check])
+    check_rms = rms_error(model(src[is_check]), dst[is_check])
+    return model, fit_rms, check_rms
+
+
+def leave_one_out_errors(src, dst, order):
+    """Each GCP's error when the model is fitted on all the others.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Distance between GCP i's dst and the prediction of the model fitted
+        without GCP i. Needs ``min_gcps(order) + 1`` GCPs.
+    """
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    errors = np.empty(len(src))
+    for index in range(len(src)):
+        others = np.arange(len(src)) != index
+        model = fit_polynomial(src[others], dst[others], order)
+        errors[index] = np.hypot(*(model(src[index:index + 1])[0] - dst[index]))
+    return errors
+
+
+def condition_number(src, order):
+    """Condition number of the (centred, scaled) design matrix: large means badly placed GCPs."""
+    src = as_points(src, "src")
+    centred = src - src.mean(axis=0)
+    scale = float(np.abs(centred).max()) or 1.0
+    return float(np.linalg.cond(design_matrix(centred / scale, order)))
+
+
+def hull_coverage(points, width, height):
+    """Share of the image area (0-1) inside the convex hull of the GCPs' (col, row).
+
+    The lecture: "a dispersão dos GCPs é muito importante" - a model is only
+    trustworthy inside the area its GCPs span.
+    """
+    from scipy.spatial import ConvexHull, QhullError
+
+    points = as_points(points)
+    clipped = np.clip(points, [0, 0], [width, height])
+    try:
+        area = ConvexHull(clipped).volume
+    except QhullError:
+        return 0.0  # collinear or too few points: no area at all
+    return float(area / (width * height))
+
+
+def predicted_error_map(src, order, x, y, gcp_error=1.0):
+    """Standard deviation of the model's prediction over a grid, for GCP errors of ``gcp_error``.
+
+    For least squares with independent GCP errors of standard deviation σ, the
+    prediction at a point with terms a(x, y) has variance
+    σ² a(x, y)ᵀ (AᵀA)⁻¹ a(x, y): small among the GCPs, growing fast away
+    from them, faster for higher degrees.
+
+    Parameters
+    ----------
+    src : (n, 2) array_like
+        GCP positions in the model's input coordinates.
+    order : {1, 2, 3}
+    x, y : ndarray
+        Grid of positions (same units as src), any shape.
+    gcp_error : float
+        σ, the standard deviation of one GCP's error (dst units).
+
+    Returns
+    -------
+    ndarray, shape of x
+        Predicted standard deviation of the model at each position.
+    """
+    src = as_points(src, "src")
+    origin = src.mean(axis=0)
+    scale = float(np.abs(src - origin).max()) or 1.0
+    matrix = design_matrix((src - origin) / scale, order)
+    if np.linalg.matrix_rank(matrix) < matrix.shape[1]:
+        raise ValueError(f"the GCPs do not determine an order-{order} polynomial (collinear or too few)")
+    normal_inverse = np.linalg.inv(matrix.T @ matrix)
+    grid = np.column_stack([np.ravel(x), np.ravel(y)])
+    terms = design_matrix((grid - origin) / scale, order)
+    variance = np.einsum("ij,jk,ik->i", terms, normal_inverse, terms)
+    return (gcp_error * np.sqrt(variance)).reshape(np.shape(x))
+
+
+def measure_shifts(reference, moving, step=64, window=64, upsample=20):
+    """Local misregistration of ``moving`` against ``reference`` on a grid of check points.
+
+    At every check point of a regular grid, the sub-pixel shift between the
+    two images' windows is measured by phase correlation (scikit-image's
+    ``phase_cross_correlation``): an independent measure of geometric error
+    that needs no GCP.
+
+    Returns
+    -------
+    points : ndarray, shape (k, 2)
+        (col, row) of each check point.
+    shifts : ndarray, shape (k, 2)
+        (dcol, drow) to move ``moving`` onto ``reference`` at that point, pixels.
+    """
+    from skimage.registration import phase_cross_correlation
+
+    reference = np.asarray(reference, dtype=np.float64)
+    moving = np.asarray(moving, dtype=np.float64)
+    if reference.shape != moving.shape or reference.ndim != 2:
+        raise ValueError(f"reference and moving must be 2-D images of the same shape, got "
+                         f"{reference.shape} and {moving.shape}")
+    half = window // 2
+    points, shifts = [], []
+    for row in range(half, reference.shape[0] - half + 1, step):
+        for col in range(half, reference.shape[1] - half + 1, step):
+            a = reference[row - half:row + half, col - half:col + half]
+            b = moving[row - half:row + half, col - half:col + half]
+            if a.std() == 0 or b.std() == 0:
+                continue
+            shift, _, _ = phase_cross_correlation(a, b, upsample_factor=upsample)
+            points.append((col, row))
+            shifts.append((shift[1], shift[0]))
+    return np.array(points, dtype=float), np.array(shifts, dtype=float)
+
+
+# --------------------------------------------------------------------------
+# GCP sets and QGIS Georeferencer .points files
+
+
+@dataclass
+class GCPSet:
+    """Ground control points: map (x, y) beside image (col, row), with ids and flags.
+
+    Parameters
+    ----------
+    map_xy : (n, 2) array_like
+        Map coordinates (easting, northing) of each GCP.
+    image_xy : (n, 2) array_like
+        Image coordinates (col, row) of the same GCP, rows counted downwards.
+    enabled : (n,) array_like of bool, optional
+        False for GCPs left out of the fit (QGIS's "enable" column).
+    ids : sequence of str, optional
+        A name per GCP; "1", "2", ... by default.
+    crs : str, optional
+        The map coordinates' CRS (WKT or "EPSG:..."), written to .points files.
+    notes : sequence of str, optional
+        What each GCP is on the ground ("road crossing", "field corner").
+    """
+
+    map_xy: np.ndarray
+    image_xy: np.ndarray
+    enabled: np.ndarray = None
+    ids: list = None
+    crs: str = None
+    notes: list = None
+
+    def __post_init__(self):
+        self.map_xy = as_points(self.map_xy, "map_xy")
+        self.image_xy = as_points(self.image_xy, "image_xy")
+        n = len(self.map_xy)
+        if len(self.image_xy) != n:
+            raise ValueError(f"map_xy and image_xy must hold the same GCPs, got {n} and {len(self.image_xy)}")
+        self.enabled = np.ones(n, bool) if self.enabled is None else np.asarray(self.enabled, dtype=bool)
+        if self.enabled.shape != (n,):
+            raise ValueError(f"enabled must have one flag per GCP ({n}), got shape {self.enabled.shape}")
+        self.ids = [str(i + 1) for i in range(n)] if self.ids is None else [str(i) for i in self.ids]
+        self.notes = [""] * n if self.notes is None else list(self.notes)
+        if len(self.ids) != n or len(self.notes) != n:
+            raise ValueError(f"ids and notes must have one entry per GCP ({n})")
+
+    def __len__(self):
+        return len(self.map_xy)
+
+    def fit(self, order):
+        """Polynomial map -> image (u = f(x, y), v = g(x, y)) on the enabled GCPs."""
+        return fit_polynomial(self.map_xy[self.enabled], self.image_xy[self.enabled], order)
+
+    def table(self, model=None):
+        """The GCP table as a pandas DataFrame; with a model, residuals in pixels.
+
+        Columns: id, map x/y, image col/row, enabled, and with a model dx, dy
+        (model - GCP, pixels) and residual R_i.
+        """
+        import pandas as pd
+
+        table = pd.DataFrame({
+            "id": self.ids, "map_x": self.map_xy[:, 0], "map_y": self.map_xy[:, 1],
+            "col": self.image_xy[:, 0], "row": self.image_xy[:, 1], "enabled": self.enabled,
+        })
+        if any(self.notes):
+            table["note"] = self.notes
+        if model is not None:
+            dx, dy, distance = residuals(model, self.map_xy, self.image_xy)
+            table["dx"], table["dy"], table["residual"] = dx, dy, distance
+        return table.set_index("id")
+
+
+def read_points(path):
+    """Read a QGIS Georeferencer ``.points`` file into a :class:`GCPSet`.
+
+    Format (QGIS Georeferencer): an optional first line ``#CRS: <WKT>``, a
+    header ``mapX,mapY,sourceX,sourceY,enable,dX,dY,residual`` (older files:
+    ``mapX,mapY,pixelX,pixelY,enable``), comma- or tab-separated. ``sourceY``
+    is the negative line number; rsgeo's rows count downwards, so row = -sourceY.
+
+    Raises
+    ------
+    ValueError
+        If the header lacks the needed columns or a value is not a number.
+    """
+    with open(path, encoding="utf-8") as handle:
+        text = handle.read()
+    lines = text.splitlines()
+    crs = None
+    if lines and lines[0].startswith("#CRS:"):
+        crs = lines.pop(0)[len("#CRS:"):].strip() or None
+    lines = [line for line in lines if line.strip() and not line.startswith("#")]
+    if not lines:
+        raise ValueError(f"{path}: no header and no GCPs; a .points file needs a header line")
+    delimiter = "\t" if "\t" in lines[0] else ","
+    reader = csv.DictReader(io.StringIO("\n".join(lines)), delimiter=delimiter)
+    header = [name.strip() for name in reader.fieldnames]
+    reader.fieldnames = header
+    source_x = "sourceX" if "sourceX" in header else "pixelX"
+    source_y = "sourceY" if "sourceY" in header else "pixelY"
+    missing = {"mapX", "mapY", source_x, source_y} - set(header)
+    if missing:
+        raise ValueError(f"{path}: header {header} lacks {sorted(missing)}; "
+                         "expected mapX,mapY,sourceX,sourceY,enable")
+    map_xy, image_xy, enabled = [], [], []
+    for number, row in enumerate(reader, start=2):
+        try:
+            map_xy.append((float(row["mapX"]), float(row["mapY"])))
+            image_xy.append((float(row[source_x]), -float(row[source_y])))
+        except (TypeError, ValueError):
+            raise ValueError(f"{path}, line {number}: coordinates must be numbers, got {dict(row)}") from None
+        enabled.append(str(row.get("enable", "1")).strip() not in ("0", "false", "False"))
+    return GCPSet(np.array(map_xy), np.array(image_xy), enabled=enabled, crs=crs)
+
+
+def write_points(path, gcps, model=None):
+    """Write a :class:`GCPSet` as a QGIS Georeferencer ``.points`` file.
+
+    With a model (map -> image, as :meth:`GCPSet.fit` returns), the dX, dY and
+    residual columns hold its residuals in pixels; QGIS's dY, like sourceY,
+    points up, so dY = -(model row - GCP row).
+    """
+    if model is not None:
+        dx, dy, distance = residuals(model, gcps.map_xy, gcps.image_xy)
+    else:
+        dx = dy = distance = np.zeros(len(gcps))
+    with open(path, "w", encoding="utf-8", newline="") as handle:
+        if gcps.crs:
+            handle.write(f"#CRS: {gcps.crs}\n")
+        handle.write("mapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n")
+        for i in range(len(gcps)):
+            values = (gcps.map_xy[i, 0], gcps.map_xy[i, 1], gcps.image_xy[i, 0], -gcps.image_xy[i, 1])
+            handle.write(",".join(repr(float(v)) for v in values)
+                         + f",{int(gcps.enabled[i])},{float(dx[i])!r},{float(-dy[i])!r},{float(distance[i])!r}\n")

@@ -1,0 +1,279 @@
+"""Synthetic data with a known answer, seeded and deterministic.
+
+Real scenes show what a method does; synthetic ones built from them, with a
+distortion, a gain and offset or a segment matching that we chose, tell
+whether it found the right answer.
+"""
+
+from dataclasses import dataclass
+
+import affine
+import numpy as np
+
+from . import data
+from .gcp import GCPSet
+from .resample import interpolate
+
+
+# -- The regression paper's case ---------------------------------------------
+
+@dataclass
+class ContrastPair:
+    """Two images of the same ground with a known radiometric relation.
+
+    y_image ≈ gain · x_true + offset, where x_image = x_true + noise, both
+    8-bit, and y_image is also shifted by ``shift`` pixels (misregistration).
+    """
+
+    x_image: np.ndarray
+    y_image: np.ndarray
+    gain: float
+    offset: float
+    noise: float
+    shift: tuple
+
+
+def contrast_pair(gain=0.885, offset=27.107, size=100, noise=35.0, shift=(0.7, 0.5), seed=0):
+    """A pair like paper 000's: the same 100 × 100 ground, another contrast, noise, a slight shift.
+
+    The ground is a crop of the real CBERS scene ``cbers_b2_A`` stretched to
+    a wide range of DNs; X is it plus noise; Y is gain·ground + offset, resampled
+    ``shift`` pixels away, plus noise (of the same relative size). With the
+    defaults the raw correlation is close to the paper's 0.45 and a 3 × 3
+    mean filter raises it well above 0.8.
+    """
+    rng = np.random.default_rng(seed)
+    scene = data.load("cbers_b2_A").array.astype(np.float64)
+    top, left = 180, 150
+    ground = scene[top:top + size // 4 + 4, left:left + size // 4 + 4]
+    ground = 40 + 160 * (ground - ground.min()) / (np.ptp(ground) or 1.0)
+    # Aerial photos at 1:30,000 resolve ground features over many pixels: sample the 20 m
+    # scene four times finer, so the ground varies smoothly and the noise does not.
+    rows, cols = (np.mgrid[0:size, 0:size] + 0.5) / 4 + 2
+    x_true = interpolate(ground, cols, rows, "cubic")
+    y_true = interpolate(ground, cols + shift[0] / 4, rows + shift[1] / 4, "cubic")
+    x_image = np.clip(np.round(x_true + rng.normal(0, noise, x_true.shape)), 0, 255).astype(np.uint8)
+    y_values = gain * y_true + offset + rng.normal(0, noise * gain, y_true.shape)
+    y_image = np.clip(np.round(y_values), 0, 255).astype(np.uint8)
+    return ContrastPair(x_image, y_image, gain, offset, noise, tuple(shift))
+
+
+# -- Georeferencing: a distorted image with GCPs of known error -------------
+
+@dataclass
+class DistortedPair:
+    """A reference map, an image distorted by a known polynomial, and GCPs with known errors.
+
+    Attributes
+    ----------
+    reference : rsgeo.data.Raster
+        The "map": a real scene with its geotransform.
+    image : ndarray
+        The distorted image (what the sensor recorded).
+    image_to_map : callable
+        The true mapping: (n, 2) image (col, row) -> (n, 2) map (x, y).
+    gcps : GCPSet
+        GCPs as a student would collect them: map coordinates exact, image
+        coordinates with the hand's error (``gcp_errors``) and one blunder.
+    gcp_errors : ndarray, shape (n, 2)
+        The error added to each GCP's image coordinates.
+    blunder : int
+        Index of the GCP with the planted blunder (its id is ``gcps.ids[blunder]``).
+    """
+
+    reference: object
+    image: np.ndarray
+    image_to_map: object
+    gcps: GCPSet
+    gcp_errors: np.ndarray
+    blunder: int
+
+    def true_image_xy(self, map_xy):
+        """Exact image (col, row) of map points, by inverting the true mapping (Newton's method)."""
+        map_xy = np.asarray(map_xy, dtype=np.float64)
+        guess = np.asarray(self._linear_inverse(map_xy))
+        for _ in range(20):
+            step = 1e-3
+            base = self.image_to_map(guess)
+            dx = (self.image_to_map(guess + [step, 0]) - base) / step
+            dy = (self.image_to_map(guess + [0, step]) - base) / step
+            jacobian = np.stack([dx, dy], axis=-1)
+            guess = guess - np.linalg.solve(jacobian, (base - map_xy)[..., np.newaxis])[..., 0]
+        return guess
+
+    def _linear_inverse(self, map_xy):
+        corners = np.array([[0, 0], [1000, 0], [0, 1000]], dtype=float)
+        mapped = self.image_to_map(corners)
+        matrix = np.column_stack([mapped[1] - mapped[0], mapped[2] - mapped[0]]) / 1000
+        return np.linalg.solve(matrix, (map_xy - mapped[0]).T).T
+
+
+def distorted_pair(n_gcps=16, gcp_error=0.4, blunder_size=9.0, shape=(360, 360), seed=0):
+    """A reference map and an image distorted from it by a known second-degree mapping.
+
+    The reference is the real ``nat1`` scene (25 m). The distorted image's
+    pixel (col, row) sees the map point given by a polynomial of degree 2: a
+    rotation of 6°, pixels of 27.5 m, a shear and a gentle curvature, the kind
+    of residual distortion georeferencing removes. GCPs are spread over the
+    image on a jittered grid; their image coordinates carry Gaussian errors of
+    ``gcp_error`` pixels ("a mão treme") and one of them a blunder of
+    ``blunder_size`` pixels.
+    """
+    rng = np.random.default_rng(seed)
+    reference = data.load("nat1")
+    west, north = reference.transform.c + 3000.0, reference.transform.f - 3500.0
+    angle = np.radians(6.0)
+
+    def image_to_map(points):
+        points = np.asarray(points, dtype=np.float64)
+        c, r = points[..., 0], points[..., 1]
+        u, v = c - shape[1] / 2, r - shape[0] / 2
+        x = (west + 27.5 * (np.cos(angle) * c + np.sin(angle) * r) + 0.04 * u * v / 10
+             + 0.0009 * u * u)
+        y = (north + 27.5 * (np.sin(angle) * c - np.cos(angle) * r) + 1.5 * c / 10
+             - 0.0012 * v * v)
+        return np.stack([x, y], axis=-1)
+
+    rows, cols = np.mgrid[0:shape[0], 0:shape[1]] + 0.5
+    map_xy = image_to_map(np.stack([cols, rows], axis=-1))
+    ref_cols, ref_rows = ~reference.transform * (map_xy[..., 0], map_xy[..., 1])
+    image = interpolate(reference.array, ref_cols, ref_rows, "cubic")
+
+    side = int(np.ceil(np.sqrt(n_gcps)))
+    grid = (np.stack(np.meshgrid(np.arange(side), np.arange(side)), axis=-1).reshape(-1, 2)[:n_gcps] + 0.5)
+    image_xy = grid / side * np.array([shape[1], shape[0]])
+    image_xy = image_xy + rng.uniform(-0.3, 0.3, image_xy.shape) * np.array([shape[1], shape[0]]) / side
+    gcp_map = image_to_map(image_xy)
+    errors = rng.normal(0, gcp_error, image_xy.shape)
+    blunder = int(rng.integers(0, n_gcps))
+    direction = rng.uniform(0, 2 * np.pi)
+    errors[blunder] += blunder_size * np.array([np.cos(direction), np.sin(direction)])
+    gcps = GCPSet(gcp_map, image_xy + errors, crs=reference.crs.to_wkt() if reference.crs else None,
+                  ids=[f"P{i + 1:02d}" for i in range(n_gcps)])
+    return DistortedPair(reference, image, image_to_map, gcps, errors, blunder)
+
+
+# -- The genetic-algorithm paper: two dates of a landscape -------------------
+
+@dataclass
+class Landscape:
+    """Two dates of a landscape: crop fields change, forest remnants stay.
+
+    Attributes
+    ----------
+    reference, adjustment : ndarray (uint8)
+        Vegetation images: the reference (date 1) on a north-up grid of
+        ``reference_transform``; the adjustment (date 2) at another pixel size,
+        rotated and shifted (``adjustment_transform``, its true geotransform).
+    reference_transform, adjustment_transform : affine.Affine
+    forest_truth : ndarray of int
+        Forest remnant k (1..n) on the reference grid, 0 elsewhere.
+    forest_centroids_map : ndarray, shape (n, 2)
+        True centroid of each remnant in map coordinates.
+    """
+
+    reference: np.ndarray
+    adjustment: np.ndarray
+    reference_transform: object
+    adjustment_transform: object
+    forest_truth: np.ndarray
+    forest_centroids_map: np.ndarray
+
+
+def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, rotation_deg=4.0,
+                       shift=(170.0, -110.0), size_m=8000.0, seed=0):
+    """A synthetic landscape of crop fields and stable forest remnants, at two dates and resolutions.
+
+    Fields are Voronoi parcels whose vegetation signal is redrawn for each
+    date (crops grow and are harvested); forest remnants are irregular blobs
+    with a high, stable signal. The adjustment image sees the same ground at
+    another pixel size, rotated by ``rotation_deg`` and shifted by ``shift``
+    metres: the misregistration the paper's method must find.
+    """
+    from scipy import ndimage
+    from scipy.spatial import cKDTree
+
+    rng = np.random.default_rng(seed)
+    fine = 10.0
+    n_fine = int(size_m / fine)
+    rows, cols = np.mgrid[0:n_fine, 0:n_fine] + 0.5
+    x, y = cols * fine, size_m - rows * fine
+    seeds = rng.uniform(0, size_m, (90, 2))
+    parcel = cKDTree(seeds).query(np.column_stack([x.ravel(), y.ravel()]))[1].reshape(x.shape)
+
+    forest = np.zeros(x.shape, dtype=np.int32)
+    margin = 1100.0
+    centres = []
+    while len(centres) < n_forest:
+        candidate = rng.uniform(margin, size_m - margin, 2)
+        if all(np.hypot(*(candidate - c)) > 1400 for c in centres):
+            centres.append(candidate)
+    for k, (cx, cy) in enumerate(centres, start=1):
+        radius = rng.uniform(200, 420)
+        stretch = rng.uniform(0.6, 1.0)
+        theta = rng.uniform(0, np.pi)
+        dx, dy = x - cx, y - cy
+        u = (dx * np.cos(theta) + dy * np.sin(theta)) / radius
+        v = (-dx * np.sin(theta) + dy * np.cos(theta)) / (radius * stretch)
+        wobble = 1 + 0.25 * np.sin(3 * np.arctan2(v, u) + k)
+        forest[(u * u + v * v) < wobble**2] = k
+
+    def date_image(date_rng):
+        field_signal = date_rng.uniform(0.1, 0.62, len(seeds))[parcel]
+        texture = ndimage.gaussian_filter(date_rng.normal(0, 0.05, x.shape), 2)
+        signal = np.where(forest > 0, 0.82, field_signal) + texture
+        return np.clip(signal * 255, 0, 255)
+
+    date1, date2 = date_image(np.random.default_rng(seed + 1)), date_image(np.random.default_rng(seed + 2))
+    fine_transform = affine.Affine(fine, 0, 0, 0, -fine, size_m)
+
+    n_ref = int(size_m / reference_pixel)
+    reference_transform = affine.Affine(reference_pixel, 0, 0, 0, -reference_pixel, size_m)
+    n_adj = int(0.8 * size_m / adjustment_pixel)
+    centre = np.array([size_m / 2, size_m / 2])
+    adjustment_transform = (affine.Affine.translation(*(centre + np.asarray(shift)))
+                            * affine.Affine.rotation(rotation_deg)
+                            * affine.Affine(adjustment_pixel, 0, -n_adj * adjustment_pixel / 2,
+                                            0, -adjustment_pixel, n_adj * adjustment_pixel / 2))
+
+    def sample(image, transform, count, pixel):
+        r, c = np.mgrid[0:count, 0:count] + 0.5
+        map_x, map_y = transform * (c, r)
+        fine_cols, fine_rows = ~fine_transform * (map_x, map_y)
+        # the sensor integrates over its pixel: smooth the fine scene to its footprint first
+        blurred = ndimage.uniform_filter(image, size=max(1, int(round(pixel / fine))))
+        return interpolate(blurred, fine_cols, fine_rows, "bilinear")
+
+    reference = np.round(sample(date1, reference_transform, n_ref, reference_pixel)).astype(np.uint8)
+    adjustment = np.round(sample(date2, adjustment_transform, n_adj, adjustment_pixel)).astype(np.uint8)
+    r, c = np.mgrid[0:n_ref, 0:n_ref] + 0.5
+    map_x, map_y = reference_transform * (c, r)
+    fine_cols, fine_rows = ~fine_transform * (map_x, map_y)
+    forest_truth = interpolate(forest, fine_cols, fine_rows, "nearest")
+    centroids = np.array([[x[forest == k].mean(), y[forest == k].mean()] for k in range(1, n_forest + 1)])
+    return Landscape(reference, adjustment, reference_transform, adjustment_transform, forest_truth, centroids)
+
+
+def synthetic_meshes(n=8, centroid_noise=1.0, area_noise=0.10, seed=0):
+    """A reference mesh and a shuffled, noisy copy with a known true matching.
+
+    The reference has n segments scattered over 400 × 400 pixels with areas
+    from 50 to 600 pixels; the adjustment sees them in a random order, with
+    Gaussian centroid noise of ``centroid_noise`` pixels and areas changed by
+    up to ±``area_noise``.
+
+    Returns
+    -------
+    reference, adjustment : rsgeo.matching.Mesh
+    truth : ndarray
+        truth[k] = reference label (1-based) of adjustment segment k.
+    """
+    from .matching import Mesh
+
+    rng = np.random.default_rng(seed)
+    centroids = rng.uniform(0, 400, (n, 2))
+    areas = rng.uniform(50, 600, n)
+    order = rng.permutation(n)
+    adjustment_centroids = centroids[order] + rng.normal(0, centroid_noise, (n, 2))
+    adjustment_areas = areas[order] * (1 + rng.uniform(-area_noise, area_noise, n))
+    return Mesh(centroids, areas), Mesh(adjustment_centroids, adjustment_areas), order + 1

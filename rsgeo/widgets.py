@@ -1,0 +1,204 @@
+"""Interactive widgets for the chapters (ipywidgets), on top of rsgeo's maths.
+
+Each function returns a widget to display as a notebook cell's last value.
+In the HTML book the widgets keep the state saved at build time; in Jupyter or
+Colab they redraw live.
+"""
+
+import numpy as np
+
+from . import distortion, gcp, matching, radiometry
+from .plot import draw_grid, draw_mesh
+
+
+def _pyplot():
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def distortion_explorer(shape=(300, 300)):
+    """Sliders for latitude, roll, pitch, yaw (constant and varying) and scan angle.
+
+    The left panel redraws the true grid where a distorted image records it;
+    the right one the pixel size at the chosen scan angle for a MODIS-like sensor.
+    """
+    import ipywidgets as widgets
+
+    plt = _pyplot()
+    controls = {
+        "latitude": widgets.FloatSlider(value=-23.0, min=-80, max=80, step=1, description="latitude °"),
+        "roll": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="roll (px)"),
+        "pitch": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="pitch (px)"),
+        "yaw": widgets.FloatSlider(value=0.0, min=-10, max=10, step=0.5, description="yaw °"),
+        "yaw_rate": widgets.FloatSlider(value=0.0, min=-0.03, max=0.03, step=0.005, readout_format=".3f",
+                                        description="yaw °/line"),
+        "scan": widgets.FloatSlider(value=30.0, min=0, max=60, step=1, description="scan angle °"),
+    }
+
+    def draw(latitude, roll, pitch, yaw, yaw_rate, scan):
+        # skew of a 185 km Landsat frame, expressed per line of a 300-line image
+        skew_km = distortion.earth_rotation_skew(latitude)
+        model = distortion.SystematicDistortion(skew_per_line=skew_km / 185.0, roll_px=roll, pitch_px=pitch,
+                                                yaw_deg=yaw, yaw_rate_deg_per_line=yaw_rate)
+        figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5))
+        draw_grid(left, distortion.distorted_grid(distortion.SystematicDistortion(), shape, 50),
+                  color="lightgray")
+        draw_grid(left, distortion.distorted_grid(model, shape, 50))
+        left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel="column (pixels)",
+                 ylabel="row (pixels)", title=f"grid as recorded (skew {skew_km:.1f} km per 185 km)")
+        angles = np.linspace(0, 60, 121)
+        along, across = distortion.pixel_size(angles, 705.0)
+        right.plot(angles, along, label="along track")
+        right.plot(angles, across, label="across track")
+        a, c = distortion.pixel_size(scan, 705.0)
+        right.scatter([scan, scan], [a, c], color="black", zorder=3)
+        right.set(xlabel="scan angle (degrees)", ylabel="pixel size (km), 1 km at nadir",
+                  title=f"MODIS-like, 705 km: {float(a):.2f} × {float(c):.2f} km at {scan:.0f}°")
+        right.legend()
+        plt.show()
+
+    output = widgets.interactive_output(draw, controls)
+    return widgets.VBox([widgets.HBox(list(controls.values())[:3]), widgets.HBox(list(controls.values())[3:]),
+                         output])
+
+
+def gcp_explorer(gcps, order=1, index=0):
+    """Move one GCP's image position with sliders and watch residuals and RMS change."""
+    import ipywidgets as widgets
+
+    plt = _pyplot()
+    dcol = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δcol (px)")
+    drow = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δrow (px)")
+    which = widgets.Dropdown(options=list(enumerate(gcps.ids)), value=index, description="GCP")
+    degree = widgets.Dropdown(options=[1, 2, 3], value=order, description="degree")
+
+    def draw(which, dcol, drow, degree):
+        image_xy = gcps.image_xy.copy()
+        image_xy[which] += (dcol, drow)
+        model = gcp.fit_polynomial(gcps.map_xy, image_xy, degree)
+        _, _, distance = gcp.residuals(model, gcps.map_xy, image_xy)
+        rms = gcp.rms_error(model(gcps.map_xy), image_xy)
+        figure, ax = plt.subplots(figsize=(9, 3.5))
+        colours = ["tab:red" if i == which else "tab:blue" for i in range(len(gcps))]
+        ax.bar(gcps.ids, distance, color=colours)
+        ax.axhline(rms, color="black", linestyle="--", label=f"RMS = {rms:.2f} px")
+        ax.set(xlabel="GCP", ylabel="residual R_i (pixels)", title=f"degree {degree}: residuals after moving "
+               f"{gcps.ids[which]} by ({dcol:+.1f}, {drow:+.1f}) px")
+        ax.legend()
+        plt.show()
+
+    output = widgets.interactive_output(draw, {"which": which, "dcol": dcol, "drow": drow, "degree": degree})
+    return widgets.VBox([widgets.HBox([which, degree]), widgets.HBox([dcol, drow]), output])
+
+
+def regression_stretch(x_image, y_image, gain, offset, sizes=(1, 3, 5, 7)):
+    """Animate the paper's correction: from no correction (t = 0) to the fitted gain and offset (t = 1).
+
+    A Play button and a slider move t; the mosaic's seam fades, X's histogram
+    slides onto Y's and the line settles in the scatter. A second control
+    changes the mean-filter size and shows r.
+    """
+    import ipywidgets as widgets
+
+    plt = _pyplot()
+    step = widgets.IntSlider(value=0, min=0, max=10, description="t × 10")
+    play = widgets.Play(value=0, min=0, max=10, step=1, interval=400, description="play")
+    widgets.jslink((play, "value"), (step, "value"))
+    size = widgets.Dropdown(options=list(sizes), value=sizes[0], description="filter")
+
+    def draw(step, size):
+        t = step / 10
+        g, o = 1 + t * (gain - 1), t * offset
+        corrected = radiometry.apply_gain_offset(x_image, g, o)
+        mosaic, split = radiometry.concatenate_halves(corrected, y_image)
+        fit = radiometry.fit_gain_offset(x_image, y_image, smooth=size if size > 1 else None)
+        figure, axes = plt.subplots(1, 3, figsize=(13, 4))
+        axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
+        axes[0].axvline(split - 0.5, color="tab:red", linewidth=0.8)
+        axes[0].set(title=f"mosaic, step {radiometry.seam_step(mosaic, split):.1f} DN", xlabel="column (px)",
+                    ylabel="row (px)")
+        bins = np.arange(257)
+        axes[1].hist(corrected.ravel(), bins, alpha=0.6, label="X corrected")
+        axes[1].hist(y_image.ravel(), bins, alpha=0.6, label="Y")
+        axes[1].set(title="histograms", xlabel="DN", ylabel="pixels")
+        axes[1].legend()
+        axes[2].scatter(x_image.ravel()[::7], y_image.ravel()[::7], s=2, alpha=0.3)
+        line = np.array([0, 255])
+        axes[2].plot(line, g * line + o, color="tab:red", label=f"Y = {g:.3f} X + {o:.2f}")
+        axes[2].set(title=f"filter {size}×{size}: r = {fit.r:.3f}", xlabel="X (DN)", ylabel="Y (DN)",
+                    xlim=(0, 255), ylim=(0, 255))
+        axes[2].legend(loc="upper left")
+        plt.show()
+
+    output = widgets.interactive_output(draw, {"step": step, "size": size})
+    return widgets.VBox([widgets.HBox([play, step, size]), output])
+
+
+def ga_evolution(reference, adjustment, truth, seed=0):
+    """The GA's evolution, generation by generation, with controls that rerun it.
+
+    Left: the two meshes side by side with the best solution's match lines
+    (green right, red wrong); right: best and mean fitness and the
+    population's diversity up to the shown generation.
+    """
+    import ipywidgets as widgets
+
+    plt = _pyplot()
+    population = widgets.IntSlider(value=60, min=10, max=200, step=10, description="population")
+    elite = widgets.FloatSlider(value=0.05, min=0, max=0.3, step=0.01, description="elitism")
+    mutation = widgets.FloatSlider(value=0.02, min=0.0, max=0.2, step=0.005, readout_format=".3f",
+                                   description="mutation")
+    selection = widgets.Dropdown(options=["tournament", "roulette"], value="tournament", description="selection")
+    generation = widgets.IntSlider(value=0, min=0, max=79, description="generation")
+    play = widgets.Play(value=0, min=0, max=79, step=1, interval=150, description="play")
+    widgets.jslink((play, "value"), (generation, "value"))
+    runs = {}
+
+    def run(population, elite, mutation, selection):
+        key = (population, elite, mutation, selection)
+        if key not in runs:
+            runs[key] = matching.genetic_match(reference, adjustment, seed=seed, population_size=population,
+                                               generations=80, elite_fraction=elite, mutation_rate=mutation,
+                                               selection=selection)
+        return runs[key]
+
+    def draw(population, elite, mutation, selection, generation):
+        result = run(population, elite, mutation, selection)
+        history = result.history[:generation + 1]
+        draw_evolution_frame(reference, adjustment, truth, history)
+        plt.show()
+
+    output = widgets.interactive_output(draw, {"population": population, "elite": elite, "mutation": mutation,
+                                               "selection": selection, "generation": generation})
+    return widgets.VBox([widgets.HBox([population, elite]), widgets.HBox([mutation, selection]),
+                         widgets.HBox([play, generation]), output])
+
+
+def draw_evolution_frame(reference, adjustment, truth, history, figure=None):
+    """One frame of the GA's evolution (used by the widget and the jshtml animation)."""
+    plt = _pyplot()
+    if figure is None:
+        figure = plt.figure(figsize=(12, 4.5))
+    figure.clear()
+    left, right = figure.subplots(1, 2)
+    offset = np.array([reference.centroids[:, 0].max() - adjustment.centroids[:, 0].min() + 80, 0.0])
+    shifted = adjustment.centroids + offset
+    draw_mesh(left, reference.centroids, color="tab:green")
+    draw_mesh(left, shifted, color="tab:orange")
+    solution = history[-1]["best_solution"]
+    for k, label in enumerate(solution):
+        if label:
+            right_match = label == truth[k]
+            left.plot(*np.array([shifted[k], reference.centroids[label - 1]]).T,
+                      color="tab:green" if right_match else "tab:red", linewidth=1.5)
+    left.set(title=f"generation {len(history) - 1}: {list(solution)}", xlabel="x (map units)",
+             ylabel="y (map units)")
+    left.invert_yaxis()
+    generations = np.arange(len(history))
+    right.plot(generations, [h["best"] for h in history], label="best FA")
+    right.plot(generations, [h["mean"] for h in history], label="mean FA")
+    right.plot(generations, [h["diversity"] for h in history], label="diversity", linestyle=":")
+    right.set(xlabel="generation", ylabel="fitness / diversity", ylim=(0, 1.02), title="evolution")
+    right.legend(loc="lower right")
+    return figure
