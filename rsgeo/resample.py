@@ -28,6 +28,7 @@ input pixels); these are the plain 2 x 2 and 4 x 4 kernels, which GDAL uses when
 the scale is 0.95 or more.
 """
 
+import affine
 import numpy as np
 
 from ._checks import as_image, check_choice
@@ -67,18 +68,36 @@ def keys_weights(t, a=-0.5):
     """
     t = np.asarray(t, dtype=np.float64)
     if a == -0.5:
-        # GDAL's own operation order, so that the sums round the same way.
-        half_t = 0.5 * t
-        three_t = 3.0 * t
-        half_t2 = half_t * t
-        return np.stack([
-            half_t * (-1 + t * (2 - t)),
-            1 + half_t2 * (-5 + three_t),
-            half_t * (1 + t * (4 - three_t)),
-            half_t2 * (-1 + t),
-        ])
+        return np.stack(_gdal_cubic_weights(t))
     return np.stack([cubic_kernel(t + 1, a), cubic_kernel(t, a),
                      cubic_kernel(1 - t, a), cubic_kernel(2 - t, a)])
+
+
+def _gdal_cubic_weights(t):
+    """GDAL's GWKCubicComputeWeights, operation for operation, with few temporaries.
+
+    GDAL writes w0 = ½t·(−1 + t·(2 − t)), w1 = 1 + ½t²·(−5 + 3t),
+    w2 = ½t·(1 + t·(4 − 3t)), w3 = ½t²·(−1 + t); the in-place steps below
+    only swap the operands of additions and products, which is exact in
+    floating point, so the weights are GDAL's to the last bit.
+    """
+    half_t = 0.5 * t
+    three_t = 3.0 * t
+    half_t2 = half_t * t
+    w0 = 2 - t
+    w0 *= t
+    w0 -= 1
+    w0 *= half_t
+    w1 = three_t - 5
+    w1 *= half_t2
+    w1 += 1
+    w2 = 4 - three_t
+    w2 *= t
+    w2 += 1
+    w2 *= half_t
+    w3 = t - 1
+    w3 *= half_t2
+    return w0, w1, w2, w3
 
 
 def cubic_kernel(s, a=-0.5):
@@ -117,6 +136,11 @@ def bilinear_weights(t):
     """
     t = np.asarray(t, dtype=np.float64)
     return np.stack([1.0 - t, t])
+
+
+# Positions are processed in chunks of this many, so that the temporaries of
+# the kernels stay in the processor's cache.
+_CHUNK = 32768
 
 
 def interpolate(image, cols, rows, method="nearest", nodata=0):
@@ -166,22 +190,28 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
 
     bands = image if image.ndim == 3 else image[np.newaxis]
     height, width = bands.shape[1:]
+    flat_bands = [np.ascontiguousarray(band).ravel() for band in bands]
+    kernel = {"nearest": _nearest, "bilinear": _bilinear, "cubic": _cubic}[method]
     flat_cols, flat_rows = cols.ravel(), rows.ravel()
-    inside = ((flat_cols >= 0) & (flat_rows >= 0)
-              & (np.floor(flat_cols + _GDAL_INDEX_EPSILON) < width)
-              & (np.floor(flat_rows + _GDAL_INDEX_EPSILON) < height))
     out = np.full((bands.shape[0], flat_cols.size), nodata, dtype=image.dtype)
-    c, r = flat_cols[inside], flat_rows[inside]
-    for band_index, band in enumerate(bands):
-        if method == "nearest":
-            values = _nearest(band, c, r)
-        elif method == "bilinear":
-            values = _bilinear(band, c, r)
-        else:
-            values = _cubic(band, c, r)
-        values = _to_dtype(values, image.dtype)
-        # GDAL's nearest-neighbour path copies source values as they are.
-        out[band_index, inside] = values if method == "nearest" else _avoid_nodata(values, nodata)
+    for start in range(0, flat_cols.size, _CHUNK):
+        c, r = flat_cols[start:start + _CHUNK], flat_rows[start:start + _CHUNK]
+        inside = ((c >= 0) & (r >= 0)
+                  & (np.floor(c + _GDAL_INDEX_EPSILON) < width)
+                  & (np.floor(r + _GDAL_INDEX_EPSILON) < height))
+        everywhere = inside.all()
+        if not everywhere:
+            c, r = c[inside], r[inside]
+        for band_index, flat in enumerate(flat_bands):
+            values = _to_dtype(kernel(flat, width, height, c, r), image.dtype)
+            if method != "nearest":
+                # GDAL's nearest-neighbour path copies source values as they are.
+                values = _avoid_nodata(values, nodata)
+            target = out[band_index, start:start + _CHUNK]
+            if everywhere:
+                target[:] = values
+            else:
+                target[inside] = values
     shape = (bands.shape[0],) + cols.shape if image.ndim == 3 else cols.shape
     return out.reshape(shape)
 
@@ -204,7 +234,10 @@ def _to_dtype(values, dtype):
     """GDAL's GWKClampValueT: round half up, clamp to the integer dtype's range."""
     if dtype.kind in "ui":
         info = np.iinfo(dtype)
-        return np.clip(np.floor(values + 0.5), info.min, info.max).astype(dtype)
+        values = np.floor(values + 0.5)
+        if dtype.itemsize < 8:
+            np.clip(values, info.min, info.max, out=values)
+        return values.astype(dtype)
     return values.astype(dtype)
 
 
@@ -224,35 +257,41 @@ def _avoid_nodata(values, nodata):
     return values
 
 
-def _nearest(band, c, r):
-    cols = np.floor(c + _GDAL_INDEX_EPSILON).astype(np.intp)
-    rows = np.floor(r + _GDAL_INDEX_EPSILON).astype(np.intp)
-    return band[rows, cols].astype(np.float64)
+def _nearest(flat, width, height, c, r):
+    cols = (c + _GDAL_INDEX_EPSILON).astype(np.intp)  # positive here: truncation is floor
+    rows = (r + _GDAL_INDEX_EPSILON).astype(np.intp)
+    return flat.take(rows * width + cols)
 
 
-def _bilinear(band, c, r):
+def _bilinear(flat, width, height, c, r):
     """GDAL's GWKBilinearResampleNoMasks4SampleT, vectorised."""
-    height, width = band.shape
-    left = np.floor(c - 0.5).astype(np.intp)
-    top = np.floor(r - 0.5).astype(np.intp)
+    left = np.floor(c - 0.5)
+    top = np.floor(r - 0.5)
     ratio_x = 1.5 - (c - left)
     ratio_y = 1.5 - (r - top)
+    left, top = left.astype(np.intp), top.astype(np.intp)
+    interior = (left >= 0) & (left < width - 1) & (top >= 0) & (top < height - 1)
+    if interior.all():
+        return _bilinear_interior(flat, width, left, top, ratio_x, ratio_y)
     values = np.empty(c.shape, dtype=np.float64)
-
-    interior = (left >= 0) & (left + 1 < width) & (top >= 0) & (top + 1 < height)
-    li, ti, rx, ry = left[interior], top[interior], ratio_x[interior], ratio_y[interior]
-    values[interior] = ((band[ti, li] * rx + band[ti, li + 1] * (1.0 - rx)) * ry
-                        + (band[ti + 1, li] * rx + band[ti + 1, li + 1] * (1.0 - rx)) * (1.0 - ry))
-
+    values[interior] = _bilinear_interior(flat, width, left[interior], top[interior],
+                                          ratio_x[interior], ratio_y[interior])
     edge = ~interior
-    if edge.any():
-        values[edge] = _bilinear_edge(band, left[edge], top[edge], ratio_x[edge], ratio_y[edge])
+    values[edge] = _bilinear_edge(flat, width, height, left[edge], top[edge], ratio_x[edge], ratio_y[edge])
     return values
 
 
-def _bilinear_edge(band, left, top, ratio_x, ratio_y):
+def _bilinear_interior(flat, width, left, top, ratio_x, ratio_y):
+    index = top * width + left
+    other_x = 1.0 - ratio_x
+    # flat[k:].take(index) reads pixel index + k without a new index array
+    upper = flat.take(index) * ratio_x + flat[1:].take(index) * other_x
+    lower = flat[width:].take(index) * ratio_x + flat[width + 1:].take(index) * other_x
+    return upper * ratio_y + lower * (1.0 - ratio_y)
+
+
+def _bilinear_edge(flat, width, height, left, top, ratio_x, ratio_y):
     """Bilinear at the image border: weights of the missing pixels dropped, the rest renormalised."""
-    height, width = band.shape
     accumulator = np.zeros(left.shape)
     divisor = np.zeros(left.shape)
     # GDAL's order: upper left, upper right, lower right, lower left.
@@ -263,35 +302,49 @@ def _bilinear_edge(band, left, top, ratio_x, ratio_y):
         col, row = left + dx, top + dy
         ok = (col >= 0) & (col < width) & (row >= 0) & (row < height)
         divisor[ok] += weight[ok]
-        accumulator[ok] += band[row[ok], col[ok]] * weight[ok]
+        accumulator[ok] += flat.take(row[ok] * width + col[ok]) * weight[ok]
     return np.where(divisor == 1.0, accumulator, accumulator / np.where(divisor == 0, 1.0, divisor))
 
 
-def _cubic(band, c, r):
+def _cubic(flat, width, height, c, r):
     """GDAL's cubic convolution (GWKCubicResampleNoMasks4SampleT), vectorised."""
-    height, width = band.shape
     # GDAL truncates towards zero here; negative positions fall back to bilinear anyway.
-    left = np.trunc(c - 0.5).astype(np.intp)
-    top = np.trunc(r - 0.5).astype(np.intp)
+    left = np.trunc(c - 0.5)
+    top = np.trunc(r - 0.5)
+    dx, dy = c - 0.5 - left, r - 0.5 - top
+    left, top = left.astype(np.intp), top.astype(np.intp)
+    interior = (left >= 1) & (left + 2 < width) & (top >= 1) & (top + 2 < height)
+    if interior.all():
+        return _cubic_interior(flat, width, left, top, dx, dy)
     values = np.empty(c.shape, dtype=np.float64)
-    interior = (left - 1 >= 0) & (left + 2 < width) & (top - 1 >= 0) & (top + 2 < height)
-
-    li, ti = left[interior], top[interior]
-    weights_x = keys_weights(c[interior] - 0.5 - li)
-    weights_y = keys_weights(r[interior] - 0.5 - ti)
-    total = np.zeros(li.shape)
-    for j in range(4):
-        row = ti + (j - 1)
-        # CONVOL4 along the row, in GDAL's order of additions.
-        along_row = (weights_x[0] * band[row, li - 1] + weights_x[1] * band[row, li]
-                     + weights_x[2] * band[row, li + 1] + weights_x[3] * band[row, li + 2])
-        total = total + weights_y[j] * along_row if j else weights_y[0] * along_row
-    values[interior] = total
-
+    values[interior] = _cubic_interior(flat, width, left[interior], top[interior], dx[interior], dy[interior])
     edge = ~interior
-    if edge.any():
-        values[edge] = _bilinear(band, c[edge], r[edge])
+    values[edge] = _bilinear(flat, width, height, c[edge], r[edge])
     return values
+
+
+def _cubic_interior(flat, width, left, top, dx, dy):
+    weights_x = _gdal_cubic_weights(dx)
+    weights_y = _gdal_cubic_weights(dy)
+    index = (top - 1) * width + (left - 1)
+    total = np.empty(index.shape)
+    along_row = np.empty(index.shape)
+    term = np.empty(index.shape)
+    for j in range(4):
+        # Taking from a view that starts k elements later reads pixel index + k
+        # without building a new index array.
+        start = j * width
+        # CONVOL4 along the row, in GDAL's order of additions.
+        np.multiply(weights_x[0], flat[start:].take(index), out=along_row)
+        for i in range(1, 4):
+            np.multiply(weights_x[i], flat[start + i:].take(index), out=term)
+            along_row += term
+        if j == 0:
+            np.multiply(weights_y[0], along_row, out=total)
+        else:
+            np.multiply(weights_y[j], along_row, out=term)
+            total += term
+    return total
 
 
 def grid_positions(shape, transform=None):
@@ -329,10 +382,11 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     ----------
     image : ndarray
         Source (distorted) image, 2-D or 3-D bands first.
-    mapping : callable
+    mapping : callable or affine.Affine
         ``mapping(points)`` with points an (n, 2) array of map (x, y) returns an
         (n, 2) array of source (col, row) - a :class:`rsgeo.gcp.PolynomialModel`
-        fitted from map to image, or any function.
+        fitted from map to image, or any function; or an ``affine.Affine``
+        from map (x, y) to source (col, row), such as ``~source_transform``.
     shape : (rows, cols)
         Output grid size.
     transform : affine.Affine, optional
@@ -370,18 +424,22 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     out_rows, out_cols = int(shape[0]), int(shape[1])
     bands = image.shape[0] if image.ndim == 3 else None
     out = np.empty(((bands,) if bands else ()) + (out_rows, out_cols), dtype=image.dtype)
+    to_map = transform if transform is not None else affine.Affine.identity()
+    centres_col = np.arange(out_cols) + 0.5
     for start in range(0, out_rows, strip_rows):
         stop = min(start + strip_rows, out_rows)
-        x, y = grid_positions((stop - start, out_cols), transform)
-        if transform is None:
-            y = y + start
+        centres_row = (np.arange(start, stop) + 0.5)[:, np.newaxis]
+        if isinstance(mapping, affine.Affine):
+            a, b, c, d, e, f = (mapping * to_map)[:6]
+            source_cols = a * centres_col + (b * centres_row + c)
+            source_rows = d * centres_col + (e * centres_row + f)
         else:
-            a, b, c, d, e, f = transform[:6]
-            x, y = x + b * start, y + e * start
-        source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
-        if source.shape != (x.size, 2):
-            raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")
-        strip = interpolate(image, source[:, 0].reshape(x.shape), source[:, 1].reshape(x.shape),
-                            method=method, nodata=nodata)
-        out[..., start:stop, :] = strip
+            ta, tb, tc, td, te, tf = to_map[:6]
+            x = ta * centres_col + (tb * centres_row + tc)
+            y = td * centres_col + (te * centres_row + tf)
+            source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
+            if source.shape != (x.size, 2):
+                raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")
+            source_cols, source_rows = source[:, 0].reshape(x.shape), source[:, 1].reshape(x.shape)
+        out[..., start:stop, :] = interpolate(image, source_cols, source_rows, method=method, nodata=nodata)
     return out

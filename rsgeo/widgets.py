@@ -70,7 +70,7 @@ def gcp_explorer(gcps, order=1, index=0):
     plt = _pyplot()
     dcol = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δcol (px)")
     drow = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δrow (px)")
-    which = widgets.Dropdown(options=list(enumerate(gcps.ids)), value=index, description="GCP")
+    which = widgets.Dropdown(options=[(name, i) for i, name in enumerate(gcps.ids)], value=index, description="GCP")
     degree = widgets.Dropdown(options=[1, 2, 3], value=order, description="degree")
 
     def draw(which, dcol, drow, degree):
