@@ -138,3 +138,27 @@ def group_segments(segments, n_groups):
     labels = lookup[segments.labels]
     centroids, areas = measure(labels)
     return Segments(labels, centroids, areas)
+
+
+def keep_largest(segments, count):
+    """The ``count`` largest segments (centroids and areas; labels renumbered by size).
+
+    Small segments are the least stable across dates, sensors and
+    resolutions: keeping the largest is a simple alternative to grouping.
+    """
+    if not 1 <= count <= len(segments):
+        raise ValueError(f"count must be between 1 and the number of segments ({len(segments)}), got {count}")
+    order = np.argsort(-segments.areas, kind="stable")[:count]
+    lookup = np.zeros(len(segments) + 1, dtype=np.int32)
+    lookup[order + 1] = np.arange(1, count + 1)
+    return Segments(lookup[segments.labels], segments.centroids[order], segments.areas[order])
+
+
+def ndvi(red, nir):
+    """Normalised difference vegetation index (NIR − red) / (NIR + red); 0 where both are 0."""
+    red = np.asarray(red, dtype=np.float64)
+    nir = np.asarray(nir, dtype=np.float64)
+    if red.shape != nir.shape:
+        raise ValueError(f"red and nir must have the same shape, got {red.shape} and {nir.shape}")
+    total = red + nir
+    return np.where(total > 0, (nir - red) / np.where(total > 0, total, 1.0), 0.0)
