@@ -34,8 +34,8 @@ def show_image(ax, image, transform=None, title="", cmap="gray", label="DN", vmi
     rows, cols = image.shape[:2]
     if transform is not None:
         scale = 1000.0 if units == "km" else 1.0
-        left, top = transform * (0, 0)
-        right, bottom = transform * (cols, rows)
+        left, top = transform @ (0, 0)
+        right, bottom = transform @ (cols, rows)
         extent = (left / scale, right / scale, bottom / scale, top / scale)
         xlabel, ylabel = f"easting ({units})", f"northing ({units})"
     else:

@@ -216,8 +216,8 @@ def overlap(raster_a, raster_b):
     west, east = max(west_a, west_b), min(east_a, east_b)
     south, north = max(south_a, south_b), min(north_a, north_b)
     inverse_a = ~raster_a.transform
-    col_start, row_start = inverse_a * (west, north)
-    col_stop, row_stop = inverse_a * (east, south)
+    col_start, row_start = inverse_a @ (west, north)
+    col_stop, row_stop = inverse_a @ (east, south)
     col_start, row_start = int(np.ceil(col_start - 1e-6)), int(np.ceil(row_start - 1e-6))
     col_stop, row_stop = int(np.floor(col_stop + 1e-6)), int(np.floor(row_stop + 1e-6))
     if col_stop - col_start < 1 or row_stop - row_start < 1:
@@ -225,8 +225,8 @@ def overlap(raster_a, raster_b):
                          "the ground")
     a_part = raster_a.array[row_start:row_stop, col_start:col_stop]
     rows, cols = np.mgrid[row_start:row_stop, col_start:col_stop] + 0.5
-    x, y = raster_a.transform * (cols, rows)
-    b_cols, b_rows = ~raster_b.transform * (x, y)
+    x, y = raster_a.transform @ (cols, rows)
+    b_cols, b_rows = ~raster_b.transform @ (x, y)
     b_part = interpolate(raster_b.array, b_cols, b_rows, "nearest")
     return a_part, b_part, (row_start, row_stop, col_start, col_stop)
 

@@ -38,7 +38,7 @@ class Segments:
 
     def map_centroids(self, transform):
         """Centroids in map coordinates through a geotransform (affine.Affine)."""
-        x, y = transform * (self.centroids[:, 0], self.centroids[:, 1])
+        x, y = transform @ (self.centroids[:, 0], self.centroids[:, 1])
         return np.column_stack([x, y])
 
 

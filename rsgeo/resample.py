@@ -19,7 +19,7 @@ positions rsgeo and ``gdalwarp`` give the same pixels, bit for bit:
 * integer outputs are rounded as floor(v + 0.5) and clamped to the dtype's
   range; float outputs are cast;
 * for bilinear and cubic, a valid output equal to ``nodata`` moves one step
-  away from it (nodata + 1, or nodata - 1 at the top of the range): GDAL's
+  away from it (nodata - 1, or nodata + 1 at the bottom of the range): GDAL's
   "AvoidNoData", which keeps the footprint of valid pixels visible in the
   values. Nearest copies source values untouched, as GDAL does.
 
@@ -203,10 +203,11 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
         if not everywhere:
             c, r = c[inside], r[inside]
         for band_index, flat in enumerate(flat_bands):
-            values = _to_dtype(kernel(flat, width, height, c, r), image.dtype)
+            exact = kernel(flat, width, height, c, r)
+            values = _to_dtype(exact, image.dtype)
             if method != "nearest":
                 # GDAL's nearest-neighbour path copies source values as they are.
-                values = _avoid_nodata(values, nodata)
+                values = _avoid_nodata(exact, values, nodata)
             target = out[band_index, start:start + _CHUNK]
             if everywhere:
                 target[:] = values
@@ -241,19 +242,22 @@ def _to_dtype(values, dtype):
     return values.astype(dtype)
 
 
-def _avoid_nodata(values, nodata):
+def _avoid_nodata(exact, values, nodata):
     """GDAL's AvoidNoData: a valid pixel that comes out equal to nodata moves one step away.
 
     Without it a dark pixel of a valid area would read as "outside the image".
+    Integers step down (nodata − 1), or up from the dtype's minimum; floats are
+    compared before the cast to the output type, as GDAL does, and step to the
+    next representable value.
     """
-    clash = values == nodata
-    if not clash.any():
-        return values
     if values.dtype.kind in "ui":
-        step = -1 if nodata == np.iinfo(values.dtype).max else 1
-        values[clash] = nodata + step
+        clash = values == nodata
+        if clash.any():
+            values[clash] = nodata + 1 if nodata == np.iinfo(values.dtype).min else nodata - 1
     else:
-        values[clash] = np.nextafter(values.dtype.type(nodata), values.dtype.type(np.inf))
+        clash = exact == nodata
+        if clash.any():
+            values[clash] = np.nextafter(values.dtype.type(nodata), values.dtype.type(np.inf))
     return values
 
 
@@ -430,7 +434,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         stop = min(start + strip_rows, out_rows)
         centres_row = (np.arange(start, stop) + 0.5)[:, np.newaxis]
         if isinstance(mapping, affine.Affine):
-            a, b, c, d, e, f = (mapping * to_map)[:6]
+            a, b, c, d, e, f = (mapping @ to_map)[:6]
             source_cols = a * centres_col + (b * centres_row + c)
             source_rows = d * centres_col + (e * centres_row + f)
         else:

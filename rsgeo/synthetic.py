@@ -136,7 +136,7 @@ def distorted_pair(n_gcps=16, gcp_error=0.4, blunder_size=9.0, shape=(360, 360),
 
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]] + 0.5
     map_xy = image_to_map(np.stack([cols, rows], axis=-1))
-    ref_cols, ref_rows = ~reference.transform * (map_xy[..., 0], map_xy[..., 1])
+    ref_cols, ref_rows = ~reference.transform @ (map_xy[..., 0], map_xy[..., 1])
     image = interpolate(reference.array, ref_cols, ref_rows, "cubic")
 
     side = int(np.ceil(np.sqrt(n_gcps)))
@@ -232,14 +232,14 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
     n_adj = int(0.8 * size_m / adjustment_pixel)
     centre = np.array([size_m / 2, size_m / 2])
     adjustment_transform = (affine.Affine.translation(*(centre + np.asarray(shift)))
-                            * affine.Affine.rotation(rotation_deg)
-                            * affine.Affine(adjustment_pixel, 0, -n_adj * adjustment_pixel / 2,
+                            @ affine.Affine.rotation(rotation_deg)
+                            @ affine.Affine(adjustment_pixel, 0, -n_adj * adjustment_pixel / 2,
                                             0, -adjustment_pixel, n_adj * adjustment_pixel / 2))
 
     def sample(image, transform, count, pixel):
         r, c = np.mgrid[0:count, 0:count] + 0.5
-        map_x, map_y = transform * (c, r)
-        fine_cols, fine_rows = ~fine_transform * (map_x, map_y)
+        map_x, map_y = transform @ (c, r)
+        fine_cols, fine_rows = ~fine_transform @ (map_x, map_y)
         # the sensor integrates over its pixel: smooth the fine scene to its footprint first
         blurred = ndimage.uniform_filter(image, size=max(1, int(round(pixel / fine))))
         return interpolate(blurred, fine_cols, fine_rows, "bilinear")
@@ -247,8 +247,8 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
     reference = np.round(sample(date1, reference_transform, n_ref, reference_pixel)).astype(np.uint8)
     adjustment = np.round(sample(date2, adjustment_transform, n_adj, adjustment_pixel)).astype(np.uint8)
     r, c = np.mgrid[0:n_ref, 0:n_ref] + 0.5
-    map_x, map_y = reference_transform * (c, r)
-    fine_cols, fine_rows = ~fine_transform * (map_x, map_y)
+    map_x, map_y = reference_transform @ (c, r)
+    fine_cols, fine_rows = ~fine_transform @ (map_x, map_y)
     forest_truth = interpolate(forest, fine_cols, fine_rows, "nearest")
     centroids = np.array([[x[forest == k].mean(), y[forest == k].mean()] for k in range(1, n_forest + 1)])
     return Landscape(reference, adjustment, reference_transform, adjustment_transform, forest_truth, centroids)

@@ -1,0 +1,87 @@
+"""Make the student edition of the course: the book with the exercises' solutions removed.
+
+    python exercises/make_student_edition.py [OUTPUT_FOLDER]     # default: student_edition
+
+Copies the book's sources (``_config.yml``, ``_toc.yml``, ``references.bib``,
+``book/``, ``exercises/``) to OUTPUT_FOLDER. In every notebook, the lines of a
+code cell between ``### BEGIN SOLUTION`` and ``### END SOLUTION`` (both
+included) are removed, leaving the task's ``answer = ...`` placeholder and the
+check that follows it; such cells are shown, not hidden behind a toggle.
+The edition's ``_config.yml`` does not execute notebooks (they stop at the
+first unsolved task, by design), so build it with
+
+    jupyter-book build OUTPUT_FOLDER
+"""
+
+import re
+import shutil
+import sys
+from pathlib import Path
+
+import nbformat
+
+ROOT = Path(__file__).resolve().parent.parent
+BEGIN, END = "### BEGIN SOLUTION", "### END SOLUTION"
+SOURCES = ("_config.yml", "_toc.yml", "references.bib", "book", "exercises")
+
+
+def strip_solutions(source):
+    """A code cell's source without its solution blocks; raises ValueError on unbalanced markers."""
+    kept, inside = [], False
+    for number, line in enumerate(source.splitlines(), start=1):
+        marker = line.strip()
+        if marker == BEGIN:
+            if inside:
+                raise ValueError(f"line {number}: {BEGIN} inside another solution block")
+            inside = True
+        elif marker == END:
+            if not inside:
+                raise ValueError(f"line {number}: {END} without {BEGIN}")
+            inside = False
+        elif not inside:
+            kept.append(line)
+    if inside:
+        raise ValueError(f"{BEGIN} without {END}")
+    return "\n".join(kept).rstrip()
+
+
+def student_notebook(path):
+    """Rewrite one notebook in place for students; return the number of solution cells stripped."""
+    notebook = nbformat.read(path, as_version=4)
+    stripped = 0
+    for cell in notebook.cells:
+        if cell.cell_type == "code" and BEGIN in cell.source:
+            cell.source = strip_solutions(cell.source)
+            tags = cell.metadata.get("tags", [])
+            cell.metadata["tags"] = [tag for tag in tags if tag != "hide-input"]
+            stripped += 1
+    nbformat.write(notebook, path)
+    return stripped
+
+
+def make_student_edition(output):
+    output = Path(output)
+    if output.exists():
+        shutil.rmtree(output)
+    output.mkdir(parents=True)
+    for name in SOURCES:
+        source = ROOT / name
+        if source.is_dir():
+            shutil.copytree(source, output / name, ignore=shutil.ignore_patterns(
+                "_build", ".ipynb_checkpoints", "__pycache__", "make_student_edition.py"))
+        else:
+            shutil.copy2(source, output / name)
+    config = (output / "_config.yml").read_text()
+    config = re.sub(r"execute_notebooks:.*", "execute_notebooks: \"off\"   # students run them, task by task",
+                    config)
+    config = re.sub(r"^title:\s*(.*)$", r"title: \1 (student edition)", config, count=1, flags=re.M)
+    (output / "_config.yml").write_text(config)
+    total = sum(student_notebook(path) for path in sorted((output / "exercises").glob("*.ipynb")))
+    return total
+
+
+if __name__ == "__main__":
+    folder = sys.argv[1] if len(sys.argv) > 1 else "student_edition"
+    count = make_student_edition(folder)
+    print(f"student edition in {folder}/: {count} solutions removed; build it with "
+          f"`jupyter-book build {folder}`")

@@ -1,0 +1,162 @@
+"""rsgeo.resample against GDAL, bit for bit, plus properties and errors."""
+
+import affine
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from gdal_reference import affine_source, gcp_source, gdal_warp
+from rsgeo import gcp
+from rsgeo.resample import METHODS, grid_positions, interpolate, keys_weights, warp
+
+SOURCE_TRANSFORM = affine.Affine(10.0, 0, 500_000.0, 0, -10.0, 7_400_000.0)
+
+
+def noise(shape, dtype="uint8", seed=0):
+    rng = np.random.default_rng(seed)
+    if np.dtype(dtype).kind == "f":
+        return rng.normal(100, 50, shape).astype(dtype)
+    info = np.iinfo(dtype)
+    return rng.integers(info.min, int(info.max) + 1, shape, dtype=dtype)
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("dtype", ["uint8", "int16", "uint16", "float32"])
+def test_affine_warp_matches_gdal_bit_for_bit(method, dtype):
+    # A rotation of 7° and a slight zoom in (scale 1/0.9): GDAL keeps its plain 2x2 and 4x4 kernels.
+    image = noise((300, 400), dtype)
+    dst_transform = (SOURCE_TRANSFORM @ affine.Affine.translation(-20.3, -15.7)
+                     @ affine.Affine.rotation(7) @ affine.Affine.scale(0.9))
+    shape = (380, 450)
+    expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape, method, 0)
+    x, y = grid_positions(shape, dst_transform)
+    cols, rows = ~SOURCE_TRANSFORM @ (x, y)
+    got = interpolate(image, cols, rows, method, nodata=0)
+    assert got.dtype == expected.dtype
+    if dtype == "float32" and method != "nearest":
+        # GDAL's float path orders a few operations differently: about 1 pixel in 8000
+        # differs by one unit in the last place of float32; integer outputs are exact.
+        np.testing.assert_array_max_ulp(got, expected, maxulp=1)
+        assert np.count_nonzero(got != expected) < got.size / 2000
+    else:
+        assert np.count_nonzero(got != expected) == 0
+    # the same footprint: GDAL's AvoidNoData keeps valid pixels off the nodata value too
+    inside = (cols >= 0) & (cols < 400) & (rows >= 0) & (rows < 300)
+    assert np.array_equal(expected != 0, inside) or method == "nearest"
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_polynomial_warp_matches_gdal_bit_for_bit(method):
+    rng = np.random.default_rng(3)
+    image = noise((320, 320), seed=3)
+    image_xy = rng.uniform(0, 320, (12, 2))
+    u, v = image_xy[:, 0] - 160, image_xy[:, 1] - 160
+    map_xy = np.column_stack([600_000 + 10 * image_xy[:, 0] + 0.4 * image_xy[:, 1] + 0.002 * u * v,
+                              7_300_000 - 10 * image_xy[:, 1] + 0.5 * image_xy[:, 0] + 0.003 * u * u])
+    # 7 m output pixels over 10 m input pixels: an up-sampling, where GDAL keeps the plain
+    # kernels (at 9.5 m the shear makes its chunk scale fall below 0.95 and it widens them)
+    dst_transform = affine.Affine(7.0, 0, 600_400, 0, -7.0, 7_299_600)
+    shape = (400, 400)
+    expected = gdal_warp(image, gcp_source(image_xy, map_xy, 2), dst_transform, shape, method, 0)
+    model = gcp.fit_polynomial(map_xy, image_xy, 2)
+    got = warp(image, model, shape, dst_transform, method=method, nodata=0)
+    assert np.count_nonzero(got != expected) == 0
+
+
+def test_multiband_is_each_band():
+    image = noise((3, 50, 60))
+    cols, rows = np.meshgrid(np.linspace(-2, 62, 70), np.linspace(-2, 52, 40))
+    together = interpolate(image, cols, rows, "cubic")
+    assert together.shape == (3, 40, 70)
+    for band in range(3):
+        assert np.array_equal(together[band], interpolate(image[band], cols, rows, "cubic"))
+
+
+def test_warp_in_strips_equals_one_strip():
+    image = noise((100, 100))
+    mapping = affine.Affine.rotation(3) @ affine.Affine.scale(0.8)
+    assert np.array_equal(warp(image, mapping, (90, 90), method="cubic", strip_rows=7),
+                          warp(image, mapping, (90, 90), method="cubic", strip_rows=1000))
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 255), st.sampled_from(METHODS),
+       st.lists(st.floats(0, 20), min_size=1, max_size=30), st.lists(st.floats(0, 15), min_size=1, max_size=30))
+def test_constant_image_stays_constant(value, method, cols, rows):
+    n = min(len(cols), len(rows))
+    image = np.full((15, 20), value, dtype=np.uint8)
+    cols, rows = np.array(cols[:n]), np.array(rows[:n])
+    out = interpolate(image, cols, rows, method, nodata=0)
+    # GDAL's rule for "inside": floor(position + 1e-10) within the image
+    inside = (np.floor(cols + 1e-10) < 20) & (np.floor(rows + 1e-10) < 15)
+    assert (out[~inside] == 0).all()
+    # a valid pixel equal to nodata moves one step away (GDAL's AvoidNoData), except for nearest
+    expected = value if (value != 0 or method == "nearest") else 1
+    assert (out[inside] == expected).all()
+
+
+@settings(max_examples=20, deadline=None)
+@given(st.sampled_from(METHODS), st.integers(0, 2**31 - 1))
+def test_identity_mapping_returns_the_image(method, seed):
+    image = noise((30, 40), "float32", seed)
+    rows, cols = np.mgrid[0:30, 0:40] + 0.5
+    assert np.array_equal(interpolate(image, cols, rows, method, nodata=-9999.0), image)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(-5, 5), st.floats(-5, 5), st.floats(-100, 100))
+def test_bilinear_is_exact_on_planes(a, b, c):
+    rows, cols = np.mgrid[0:20, 0:20] + 0.5
+    plane = a * cols + b * rows + c
+    rng = np.random.default_rng(0)
+    at_c, at_r = rng.uniform(1, 19, 200), rng.uniform(1, 19, 200)
+    got = interpolate(plane, at_c, at_r, "bilinear", nodata=np.nan)
+    np.testing.assert_allclose(got, a * at_c + b * at_r + c, atol=1e-9)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-0.1, 0.1), st.floats(-0.1, 0.1), st.floats(-0.1, 0.1))
+def test_cubic_reproduces_quadratics_in_the_interior(a, b, cxx, cxy, cyy):
+    rows, cols = np.mgrid[0:24, 0:24] + 0.5
+    surface = a * cols + b * rows + cxx * cols**2 + cxy * cols * rows + cyy * rows**2
+    rng = np.random.default_rng(1)
+    at_c, at_r = rng.uniform(3, 20, 200), rng.uniform(3, 20, 200)
+    got = interpolate(surface, at_c, at_r, "cubic", nodata=np.nan)
+    expected = a * at_c + b * at_r + cxx * at_c**2 + cxy * at_c * at_r + cyy * at_r**2
+    np.testing.assert_allclose(got, expected, atol=1e-8)
+
+
+def test_keys_weights_sum_to_one_and_interpolate():
+    t = np.linspace(0, 0.999, 50)
+    np.testing.assert_allclose(keys_weights(t).sum(axis=0), 1.0)
+    np.testing.assert_allclose(keys_weights(t, a=-0.75).sum(axis=0), 1.0)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(cols=[np.nan], rows=[1.0]), "NaN or infinite"),
+    (dict(cols=[np.inf], rows=[1.0]), "NaN or infinite"),
+    (dict(cols=[1.0, 2.0], rows=[1.0]), "same shape"),
+    (dict(cols=[1.0], rows=[1.0], method="lanczos"), "unknown method 'lanczos'"),
+    (dict(cols=[1.0], rows=[1.0], nodata=300), "does not fit dtype uint8"),
+    (dict(cols=[1.0], rows=[1.0], nodata=-1), "does not fit dtype uint8"),
+])
+def test_bad_input_is_a_clear_value_error(kwargs, message):
+    image = np.zeros((4, 4), dtype=np.uint8)
+    with pytest.raises(ValueError, match=message):
+        interpolate(image, **kwargs)
+
+
+@pytest.mark.parametrize("image, message", [(np.zeros(5), "1-D"), (np.zeros((2, 2, 2, 2)), "4-D"),
+                                            (np.array([["a"]]), "integers or floats")])
+def test_images_that_are_not_images(image, message):
+    with pytest.raises(ValueError, match=message):
+        interpolate(image, [0.5], [0.5])
+
+
+def test_warp_rejects_a_bad_mapping_and_shape():
+    image = np.zeros((4, 4), dtype=np.uint8)
+    with pytest.raises(ValueError, match=r"\(n, 2\)"):
+        warp(image, lambda points: points[:, 0], (2, 2))
+    with pytest.raises(ValueError, match="two positive integers"):
+        warp(image, affine.Affine.identity(), (0, 2))
