@@ -111,7 +111,7 @@ def check_rms(rms, predicted, observed):
     verdict = _close(rms, expected, "rms", 1e-6,
                      "RMS = sqrt( (1/n) Σ (dx_i² + dy_i²) ): square each residual's length, average, root.",
                      " px")
-    if not verdict.ok and np.isclose(float(rms), expected * np.sqrt(2), rtol=1e-6):
+    if not verdict.ok and np.isclose(float(rms) * np.sqrt(2), expected, rtol=1e-6):
         verdict.hint = "You averaged dx² and dy² separately (dividing by 2n): divide by n."
     return verdict
 
