@@ -68,7 +68,8 @@ def test_a_failing_cell_fails_the_book_build(tmp_path):
     (tmp_path / "_config.yml").write_text(config.replace("bibtex_bibfiles:\n  - references.bib\n", ""))
     (tmp_path / "_toc.yml").write_text("format: jb-book\nroot: broken\n")
     failing_notebook(tmp_path)
-    build = subprocess.run([sys.executable, "-m", "jupyter_book", "build", str(tmp_path), "-W", "-n", "--keep-going"],
+    jupyter_book = Path(sys.executable).parent / "jupyter-book"      # the command the README uses
+    build = subprocess.run([str(jupyter_book), "build", str(tmp_path), "-W", "-n", "--keep-going"],
                            capture_output=True, text=True, timeout=600)
     assert build.returncode != 0, build.stdout[-2000:]
     assert "broken on purpose" in build.stdout + build.stderr
