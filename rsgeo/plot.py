@@ -70,9 +70,16 @@ def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
 
 
 def animation_html(animation):
-    """An animation as a self-contained JavaScript player, so it plays in the static HTML book."""
+    """An animation as a self-contained JavaScript player, so it plays in the static HTML book.
+
+    Matplotlib's player links Font Awesome 4 from a CDN for its button icons; the link is
+    dropped so that the page makes no request outside the book (the book's theme and
+    Jupyter already provide Font Awesome, whose ``fa fa-play`` classes the buttons use).
+    """
+    import re
+
     from IPython.display import HTML
 
     html = animation.to_jshtml()
     _pyplot().close(animation._fig)
-    return HTML(html)
+    return HTML(re.sub(r"<link[^>]*font-awesome[^>]*>", "", html))
