@@ -91,6 +91,25 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, 
     return float(surface_speed * imaging_time * np.cos(zeta))
 
 
+def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclination_deg=98.2):
+    """Earth-rotation offset, in pixels, between successive lines of a scene of ``lines`` lines.
+
+    The frame is ``lines × pixel_size_km`` long; its last line is offset by
+    :func:`earth_rotation_skew`, spread evenly over the lines (the systematic
+    correction shifts line n back by n times this value).
+
+    Examples
+    --------
+    >>> round(skew_per_line(0.0, 6000, 0.030833), 4)     # Landsat: 6000 lines of 30.8 m
+    0.0681
+    """
+    if int(lines) != lines or lines < 1:
+        raise ValueError(f"lines must be a positive whole number, got {lines!r}")
+    check_range(pixel_size_km, "pixel_size_km", low=1e-12, why="a size")
+    offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km, inclination_deg)
+    return offset_km / pixel_size_km / lines
+
+
 def skew_angle(latitude_deg, altitude_km=705.0, inclination_deg=98.2):
     """Angle (degrees) by which Earth rotation skews the image's columns."""
     offset = earth_rotation_skew(latitude_deg, 100.0, altitude_km, inclination_deg)

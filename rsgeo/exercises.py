@@ -119,9 +119,8 @@ def check_rms(rms, predicted, observed):
 def check_blunder(gcp_id, gcps, order):
     """The id of the planted bad GCP in a GCPSet."""
     gcp_id = str(_require(gcp_id, "gcp_id"))
-    _, kept = gcp.refine_gcps(gcps.map_xy, gcps.image_xy, order, tolerance=2.0)
-    removed = [gcps.ids[i] for i in np.flatnonzero(~kept)]
-    worst = removed[0] if removed else None
+    _, _, distance = gcp.residuals(gcps.fit(order), gcps.map_xy, gcps.image_xy)
+    worst = gcps.ids[int(np.argmax(distance))]
     if gcp_id == worst:
         return Verdict(True, f"GCP {gcp_id} is the blunder: its residual dwarfs the others'.")
     return Verdict(False, f"GCP {gcp_id} is not the blunder.",

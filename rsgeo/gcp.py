@@ -527,7 +527,8 @@ class GCPSet:
         """The GCP table as a pandas DataFrame; with a model, residuals in pixels.
 
         Columns: id, map x/y, image col/row, enabled, and with a model dx, dy
-        (model - GCP, pixels) and residual R_i.
+        (model - GCP, pixels), residual R_i (pixels), and ``residual_map``: the
+        residual of the separately fitted reverse model (image -> map), in map units.
         """
         import pandas as pd
 
@@ -540,6 +541,8 @@ class GCPSet:
         if model is not None:
             dx, dy, distance = residuals(model, self.map_xy, self.image_xy)
             table["dx"], table["dy"], table["residual"] = dx, dy, distance
+            reverse = fit_polynomial(self.image_xy[self.enabled], self.map_xy[self.enabled], model.order)
+            table["residual_map"] = residuals(reverse, self.image_xy, self.map_xy)[2]
         return table.set_index("id")
 
 
