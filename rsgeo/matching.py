@@ -433,3 +433,73 @@ def success_table(sizes=(5, 8), seeds=range(30), alpha=0.5, shrink=None):
                          "segments right (%)": 100 * np.mean(share), "mean s/run": np.mean(seconds),
                          "worst s/run": np.max(seconds)})
     return pd.DataFrame(rows).set_index(["n", "matcher"])
+
+
+@dataclass
+class Registration:
+    """The outcome of :func:`register_by_regions`.
+
+    Attributes
+    ----------
+    match : MatchResult
+        The GA's matching of adjustment segments to reference labels.
+    map_xy, image_xy : ndarray, shape (k, 2)
+        The GCPs: matched reference centroids (map units) and adjustment
+        centroids (adjustment pixels), one per matched reference label.
+    model : rsgeo.gcp.PolynomialModel
+        Affine model map -> adjustment image, fitted on the kept GCPs.
+    kept : ndarray of bool
+        GCPs that survived refinement.
+    rms_all, rms_kept : float
+        Lecture's RMS (pixels) of the affine fit on all GCPs, and of the refined model on the kept ones.
+    """
+
+    match: MatchResult
+    map_xy: np.ndarray
+    image_xy: np.ndarray
+    model: object
+    kept: np.ndarray
+    rms_all: float
+    rms_kept: float
+
+
+def register_by_regions(reference, adjustment, reference_transform, reference_pixel, adjustment_pixel,
+                        alpha=0.5, seed=None, tolerance=1.0, min_gcps=4):
+    """The paper's registration: match forest segments by the GA, then an affine model from centroids.
+
+    Paper 001, section 4: the matched centroids are GCPs for an affine
+    transformation; GCPs with large errors are removed (here exactly as
+    ``gdalwarp -refine_gcps tolerance min_gcps``) until the RMS is under a pixel.
+
+    Parameters
+    ----------
+    reference, adjustment : rsgeo.regions.Segments
+        Forest segments of the reference and adjustment images.
+    reference_transform : affine.Affine
+        Geotransform of the reference image (its centroids become map coordinates).
+    reference_pixel, adjustment_pixel : float
+        Pixel sizes (map units), to compare the meshes in the same units.
+    alpha, seed
+        As :func:`genetic_match`.
+    tolerance : float
+        Refinement tolerance, adjustment pixels.
+    min_gcps : int
+
+    Returns
+    -------
+    Registration
+    """
+    from . import gcp
+
+    reference_mesh = Mesh(reference.centroids, reference.areas, pixel_size=reference_pixel)
+    adjustment_mesh = Mesh(adjustment.centroids, adjustment.areas, pixel_size=adjustment_pixel)
+    match = genetic_match(reference_mesh, adjustment_mesh, alpha, seed=seed)
+    adjustment_xy, _, labels = matched_centroids(match.solution, reference_mesh, adjustment_mesh)
+    image_xy = adjustment_xy / adjustment_pixel
+    map_xy = reference.map_centroids(reference_transform)[labels - 1]
+    if len(labels) < 3:
+        raise ValueError(f"only {len(labels)} segments were matched; an affine model needs at least 3")
+    rms_all = gcp.rms_error(gcp.fit_polynomial(map_xy, image_xy, 1)(map_xy), image_xy)
+    model, kept = gcp.refine_gcps(map_xy, image_xy, 1, tolerance, min(min_gcps, len(labels)))
+    rms_kept = gcp.rms_error(model(map_xy[kept]), image_xy[kept])
+    return Registration(match, map_xy, image_xy, model, kept, rms_all, rms_kept)

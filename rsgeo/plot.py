@@ -69,6 +69,63 @@ def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
                     textcoords="offset points", fontsize=9, weight="bold")
 
 
+def draw_neighbour_weights(ax, position, method):
+    """The pixels a bilinear or cubic interpolation uses around a position, sized by their weight.
+
+    Circle area is proportional to |weight|, red for negative weights (cubic
+    convolution's lobes); the cross is the position, in GDAL's (col, row).
+    """
+    from .resample import bilinear_weights, keys_weights
+
+    col, row = position
+    left, top = int(np.floor(col - 0.5)), int(np.floor(row - 0.5))
+    dx, dy = col - 0.5 - left, row - 0.5 - top
+    if method == "bilinear":
+        weights, offsets = np.outer(bilinear_weights(dy), bilinear_weights(dx)), (0, 1)
+    else:
+        weights, offsets = np.outer(keys_weights(dy), keys_weights(dx)), (-1, 0, 1, 2)
+    for j, oy in enumerate(offsets):
+        for i, ox in enumerate(offsets):
+            centre = (left + ox + 0.5, top + oy + 0.5)
+            weight = weights[j, i]
+            ax.scatter(*centre, s=2000 * abs(weight), color="tab:red" if weight < 0 else "tab:blue", alpha=0.6)
+            ax.annotate(f"{weight:.2f}", centre, ha="center", va="center", fontsize=8)
+    ax.scatter(col, row, marker="x", color="black", s=80)
+    ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel="column", ylabel="row",
+           title=f"{method}: position ({col:.2f}, {row:.2f})")
+    ax.grid(True)
+    ax.set_aspect("equal")
+
+
+def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
+    """One frame of the regression stretch: mosaic, histograms, scatter with the line (chapter 5).
+
+    ``t`` goes from 0 (no correction) to 1 (the fitted gain and offset):
+    gain(t) = 1 + t·(gain − 1), offset(t) = t·offset.
+    """
+    from .radiometry import apply_gain_offset, concatenate_halves, seam_step
+
+    gain_t, offset_t = 1 + t * (gain - 1), t * offset
+    corrected = apply_gain_offset(x_image, gain_t, offset_t)
+    mosaic, split = concatenate_halves(corrected, y_image)
+    for ax in axes:
+        ax.clear()
+    axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
+    axes[0].axvline(split - 0.5, color="tab:red", linewidth=0.8)
+    axes[0].set(title=f"t = {t:.1f}: seam step {seam_step(mosaic, split):.1f} DN", xlabel="column (px)",
+                ylabel="row (px)")
+    bins = np.arange(257)
+    axes[1].hist(corrected.ravel(), bins, alpha=0.6, label="A corrected")
+    axes[1].hist(np.asarray(y_image).ravel(), bins, alpha=0.6, label="B")
+    axes[1].set(title="histograms", xlabel="DN", ylabel="pixels")
+    axes[1].legend()
+    axes[2].scatter(np.ravel(x_image)[::5], np.ravel(y_image)[::5], s=2, alpha=0.3)
+    line = np.array([0, 255])
+    axes[2].plot(line, gain_t * line + offset_t, color="tab:red")
+    axes[2].set(title=f"Y = {gain_t:.3f} X + {offset_t:.2f}{title_extra}", xlabel="A = X (DN)",
+                ylabel="B = Y (DN)", xlim=(0, 255), ylim=(0, 255))
+
+
 def animation_html(animation):
     """An animation as a self-contained JavaScript player, so it plays in the static HTML book.
 

@@ -8,7 +8,7 @@ Colab they redraw live.
 import numpy as np
 
 from . import distortion, gcp, matching, radiometry
-from .plot import draw_grid, draw_mesh
+from .plot import draw_grid, draw_mesh, draw_stretch_frame
 
 
 def _pyplot():
@@ -108,27 +108,10 @@ def regression_stretch(x_image, y_image, gain, offset, sizes=(1, 3, 5, 7)):
     size = widgets.Dropdown(options=list(sizes), value=sizes[0], description="filter")
 
     def draw(step, size):
-        t = step / 10
-        g, o = 1 + t * (gain - 1), t * offset
-        corrected = radiometry.apply_gain_offset(x_image, g, o)
-        mosaic, split = radiometry.concatenate_halves(corrected, y_image)
         fit = radiometry.fit_gain_offset(x_image, y_image, smooth=size if size > 1 else None)
         figure, axes = plt.subplots(1, 3, figsize=(13, 4))
-        axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
-        axes[0].axvline(split - 0.5, color="tab:red", linewidth=0.8)
-        axes[0].set(title=f"mosaic, step {radiometry.seam_step(mosaic, split):.1f} DN", xlabel="column (px)",
-                    ylabel="row (px)")
-        bins = np.arange(257)
-        axes[1].hist(corrected.ravel(), bins, alpha=0.6, label="X corrected")
-        axes[1].hist(y_image.ravel(), bins, alpha=0.6, label="Y")
-        axes[1].set(title="histograms", xlabel="DN", ylabel="pixels")
-        axes[1].legend()
-        axes[2].scatter(x_image.ravel()[::7], y_image.ravel()[::7], s=2, alpha=0.3)
-        line = np.array([0, 255])
-        axes[2].plot(line, g * line + o, color="tab:red", label=f"Y = {g:.3f} X + {o:.2f}")
-        axes[2].set(title=f"filter {size}×{size}: r = {fit.r:.3f}", xlabel="X (DN)", ylabel="Y (DN)",
-                    xlim=(0, 255), ylim=(0, 255))
-        axes[2].legend(loc="upper left")
+        draw_stretch_frame(axes, x_image, y_image, gain, offset, step / 10,
+                           title_extra=f"   (filter {size}×{size}: r = {fit.r:.3f})")
         plt.show()
 
     output = widgets.interactive_output(draw, {"step": step, "size": size})

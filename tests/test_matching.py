@@ -65,15 +65,13 @@ def test_registration_of_the_synthetic_two_date_pair():
     land = synthetic.two_date_landscape()
     reference = regions.forest_segments(land.reference, threshold=185)
     adjustment = regions.forest_segments(land.adjustment, threshold=185)
-    reference_mesh = matching.Mesh(reference.centroids, reference.areas, pixel_size=20)
-    adjustment_mesh = matching.Mesh(adjustment.centroids, adjustment.areas, pixel_size=30)
-    result = matching.genetic_match(reference_mesh, adjustment_mesh, seed=1)
-    adjustment_xy, _, labels = matching.matched_centroids(result.solution, reference_mesh, adjustment_mesh)
-    map_xy = reference.map_centroids(land.reference_transform)[labels - 1]
-    model, kept = gcp.refine_gcps(map_xy, adjustment_xy / 30, order=1, tolerance=1.0, min_gcps=4)
-    assert gcp.rms_error(model(map_xy[kept]), adjustment_xy[kept] / 30) < 1.0
+    registration = matching.register_by_regions(reference, adjustment, land.reference_transform,
+                                                reference_pixel=20, adjustment_pixel=30, seed=1, tolerance=1.0)
+    assert registration.rms_kept < 1.0
+    # and against the truth we built in, not just the GCPs' own residuals
+    map_xy = registration.map_xy
     truth = np.column_stack((~land.adjustment_transform) @ (map_xy[:, 0], map_xy[:, 1]))
-    assert gcp.rms_error(model(map_xy), truth) < 1.0
+    assert gcp.rms_error(registration.model(map_xy), truth) < 1.0
 
 
 @pytest.mark.parametrize("call, message", [
