@@ -175,7 +175,7 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None):
             right_match = label == truth[k]
             left.plot(*np.array([shifted[k], reference.centroids[label - 1]]).T,
                       color="tab:green" if right_match else "tab:red", linewidth=1.5)
-    left.set(title=f"generation {len(history) - 1}: {list(solution)}", xlabel="x (map units)",
+    left.set(title=f"generation {len(history) - 1}: {np.asarray(solution).tolist()}", xlabel="x (map units)",
              ylabel="y (map units)")
     left.invert_yaxis()
     generations = np.arange(len(history))
