@@ -1,5 +1,6 @@
 """Every notebook of the book and the exercises runs top to bottom; committed notebooks are clean."""
 
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -67,6 +68,8 @@ def test_a_failing_cell_fails_the_book_build(tmp_path):
     config = (ROOT / "_config.yml").read_text()
     (tmp_path / "_config.yml").write_text(config.replace("bibtex_bibfiles:\n  - references.bib\n", ""))
     (tmp_path / "_toc.yml").write_text("format: jb-book\nroot: broken\n")
+    for folder in ("_ext", "_vendor"):                  # the local extension and the vendored JavaScript
+        shutil.copytree(ROOT / "book" / folder, tmp_path / "book" / folder, symlinks=True)
     failing_notebook(tmp_path)
     jupyter_book = Path(sys.executable).parent / "jupyter-book"      # the command the README uses
     build = subprocess.run([str(jupyter_book), "build", str(tmp_path), "-W", "-n", "--keep-going"],
