@@ -53,6 +53,9 @@ def min_gcps(order):
     return comb(order + 2, 2)
 
 
+_minimum_gcps = min_gcps
+
+
 def term_names(order, variables=("x", "y")):
     """Names of the polynomial's terms in the lecture's order.
 
@@ -96,6 +99,16 @@ def design_matrix(points, order):
     return np.column_stack([x**px * y**py for px, py in _TERMS[:min_gcps(order)]])
 
 
+def _normalised_design(points, order, origin=None, scale=None):
+    """Design matrix on coordinates centred on ``origin`` (default: their mean) and divided by
+    ``scale`` (default: their largest centred magnitude), with the origin and scale used."""
+    if origin is None:
+        origin = points.mean(axis=0)
+    if scale is None:
+        scale = float(np.abs(points - origin).max()) or 1.0
+    return design_matrix((points - origin) / scale, order), origin, scale
+
+
 @dataclass
 class PolynomialModel:
     """A fitted polynomial mapping from ``src`` to ``dst`` coordinates.
@@ -123,8 +136,7 @@ class PolynomialModel:
     dst: np.ndarray = field(repr=False)
 
     def __call__(self, points):
-        points = as_points(points)
-        scaled_terms = design_matrix((points - self.origin) / self.scale, self.order)
+        scaled_terms, _, _ = _normalised_design(as_points(points), self.order, self.origin, self.scale)
         return scaled_terms @ self._scaled_coefficients().T
 
     def _scaled_coefficients(self):
@@ -193,10 +205,7 @@ def fit_polynomial(src, dst, order):
     needed = min_gcps(order)
     if len(src) < needed:
         raise ValueError(f"order {order} needs at least {needed} GCPs, got {len(src)}")
-    origin = src.mean(axis=0)
-    centred = src - origin
-    scale = float(np.abs(centred).max()) or 1.0
-    matrix = design_matrix(centred / scale, order)
+    matrix, origin, scale = _normalised_design(src, order)
     rank = np.linalg.matrix_rank(matrix)
     if rank < needed:
         raise ValueError(
@@ -300,7 +309,7 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None):
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
     order = _check_order(order)
-    floor = globals()["min_gcps"](order)
+    floor = _minimum_gcps(order)   # the parameter min_gcps (GDAL's name) hides the function
     if min_gcps is None:
         min_gcps = floor
     if min_gcps < floor:
@@ -376,10 +385,8 @@ def leave_one_out_errors(src, dst, order):
 
 def condition_number(src, order):
     """Condition number of the (centred, scaled) design matrix: large means badly placed GCPs."""
-    src = as_points(src, "src")
-    centred = src - src.mean(axis=0)
-    scale = float(np.abs(centred).max()) or 1.0
-    return float(np.linalg.cond(design_matrix(centred / scale, order)))
+    matrix, _, _ = _normalised_design(as_points(src, "src"), order)
+    return float(np.linalg.cond(matrix))
 
 
 def hull_coverage(points, width, height):
@@ -422,15 +429,12 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0):
     ndarray, shape of x
         Predicted standard deviation of the model at each position.
     """
-    src = as_points(src, "src")
-    origin = src.mean(axis=0)
-    scale = float(np.abs(src - origin).max()) or 1.0
-    matrix = design_matrix((src - origin) / scale, order)
+    matrix, origin, scale = _normalised_design(as_points(src, "src"), order)
     if np.linalg.matrix_rank(matrix) < matrix.shape[1]:
         raise ValueError(f"the GCPs do not determine an order-{order} polynomial (collinear or too few)")
     normal_inverse = np.linalg.inv(matrix.T @ matrix)
     grid = np.column_stack([np.ravel(x), np.ravel(y)])
-    terms = design_matrix((grid - origin) / scale, order)
+    terms, _, _ = _normalised_design(grid, order, origin, scale)
     variance = np.einsum("ij,jk,ik->i", terms, normal_inverse, terms)
     return (gcp_error * np.sqrt(variance)).reshape(np.shape(x))
 

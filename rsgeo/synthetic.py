@@ -88,25 +88,6 @@ class DistortedPair:
     gcp_errors: np.ndarray
     blunder: int
 
-    def true_image_xy(self, map_xy):
-        """Exact image (col, row) of map points, by inverting the true mapping (Newton's method)."""
-        map_xy = np.asarray(map_xy, dtype=np.float64)
-        guess = np.asarray(self._linear_inverse(map_xy))
-        for _ in range(20):
-            step = 1e-3
-            base = self.image_to_map(guess)
-            dx = (self.image_to_map(guess + [step, 0]) - base) / step
-            dy = (self.image_to_map(guess + [0, step]) - base) / step
-            jacobian = np.stack([dx, dy], axis=-1)
-            guess = guess - np.linalg.solve(jacobian, (base - map_xy)[..., np.newaxis])[..., 0]
-        return guess
-
-    def _linear_inverse(self, map_xy):
-        corners = np.array([[0, 0], [1000, 0], [0, 1000]], dtype=float)
-        mapped = self.image_to_map(corners)
-        matrix = np.column_stack([mapped[1] - mapped[0], mapped[2] - mapped[0]]) / 1000
-        return np.linalg.solve(matrix, (map_xy - mapped[0]).T).T
-
 
 def distorted_pair(n_gcps=16, gcp_error=0.4, blunder_size=9.0, shape=(360, 360), seed=0):
     """A reference map and an image distorted from it by a known second-degree mapping.

@@ -89,3 +89,14 @@ def test_bad_input_is_a_clear_value_error(call, message):
 
 
 MESH = matching.Mesh([[0, 0], [100, 0], [0, 100]], [10, 20, 30])
+
+
+def test_grouping_segments_into_regions():
+    land = synthetic.two_date_landscape()
+    segments = regions.forest_segments(land.reference, threshold=185)
+    grouped = regions.group_segments(segments, 5)
+    assert len(grouped) == 5
+    assert grouped.areas.sum() == segments.areas.sum()           # regions are unions of segments
+    assert set(np.unique(grouped.labels)) == set(range(6))
+    largest = regions.keep_largest(segments, 3)
+    np.testing.assert_array_equal(largest.areas, np.sort(segments.areas)[::-1][:3])
