@@ -334,10 +334,10 @@ def simulate(image, distortion, method="bilinear", nodata=0):
     distorted : ndarray
         Same shape and dtype; cells that see ground outside the scene get nodata.
     """
-    from .resample import interpolate
+    from .resample import grid_positions, interpolate
 
     shape = np.shape(image)[-2:]
-    rows, cols = np.mgrid[0:shape[0], 0:shape[1]] + 0.5
+    cols, rows = grid_positions(shape)
     true_c, true_r = distortion.image_to_true(cols, rows, shape)
     return interpolate(image, true_c, true_r, method, nodata)
 
@@ -348,10 +348,10 @@ def correct(distorted, distortion, method="bilinear", nodata=0):
     Each true-grid cell asks the known model where the sensor recorded it
     (:meth:`SystematicDistortion.true_to_image`) and interpolates there.
     """
-    from .resample import interpolate
+    from .resample import grid_positions, interpolate
 
     shape = np.shape(distorted)[-2:]
-    rows, cols = np.mgrid[0:shape[0], 0:shape[1]] + 0.5
+    cols, rows = grid_positions(shape)
     image_c, image_r = distortion.true_to_image(cols, rows, shape)
     return interpolate(distorted, image_c, image_r, method, nodata)
 

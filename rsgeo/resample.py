@@ -351,7 +351,7 @@ def _cubic_interior(flat, width, left, top, dx, dy):
     return total
 
 
-def grid_positions(shape, transform=None):
+def grid_positions(shape, transform=None, first_row=0):
     """Map coordinates of the centres of an output grid's cells.
 
     Parameters
@@ -360,17 +360,18 @@ def grid_positions(shape, transform=None):
         Output grid size.
     transform : affine.Affine, optional
         Output geotransform (pixel corner -> map). Identity (pixel coordinates) if omitted.
+    first_row : int
+        Row of the grid where this block starts (for processing a grid in strips).
 
     Returns
     -------
     x, y : ndarray, shape ``shape``
         Map coordinates of each cell centre.
     """
-    rows, cols = np.mgrid[0:shape[0], 0:shape[1]].astype(np.float64) + 0.5
-    if transform is None:
-        return cols, rows
-    a, b, c, d, e, f = transform[:6]
-    return a * cols + b * rows + c, d * cols + e * rows + f
+    a, b, c, d, e, f = (transform if transform is not None else affine.Affine.identity())[:6]
+    cols = np.arange(shape[1]) + 0.5
+    rows = (np.arange(first_row, first_row + shape[0]) + 0.5)[:, np.newaxis]
+    return a * cols + (b * rows + c), d * cols + (e * rows + f)
 
 
 def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256):
@@ -429,18 +430,13 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     bands = image.shape[0] if image.ndim == 3 else None
     out = np.empty(((bands,) if bands else ()) + (out_rows, out_cols), dtype=image.dtype)
     to_map = transform if transform is not None else affine.Affine.identity()
-    centres_col = np.arange(out_cols) + 0.5
     for start in range(0, out_rows, strip_rows):
         stop = min(start + strip_rows, out_rows)
-        centres_row = (np.arange(start, stop) + 0.5)[:, np.newaxis]
+        strip = (stop - start, out_cols)
         if isinstance(mapping, affine.Affine):
-            a, b, c, d, e, f = (mapping @ to_map)[:6]
-            source_cols = a * centres_col + (b * centres_row + c)
-            source_rows = d * centres_col + (e * centres_row + f)
+            source_cols, source_rows = grid_positions(strip, mapping @ to_map, first_row=start)
         else:
-            ta, tb, tc, td, te, tf = to_map[:6]
-            x = ta * centres_col + (tb * centres_row + tc)
-            y = td * centres_col + (te * centres_row + tf)
+            x, y = grid_positions(strip, to_map, first_row=start)
             source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
             if source.shape != (x.size, 2):
                 raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")

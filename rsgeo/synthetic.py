@@ -217,20 +217,21 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
                             @ affine.Affine(adjustment_pixel, 0, -n_adj * adjustment_pixel / 2,
                                             0, -adjustment_pixel, n_adj * adjustment_pixel / 2))
 
-    def sample(image, transform, count, pixel):
+    def fine_positions(transform, count):
+        """(col, row) on the fine scene of the centres of a count × count grid."""
         r, c = np.mgrid[0:count, 0:count] + 0.5
-        map_x, map_y = transform @ (c, r)
-        fine_cols, fine_rows = ~fine_transform @ (map_x, map_y)
+        return ~fine_transform @ (transform @ (c, r))
+
+    def sample(image, positions, pixel):
         # the sensor integrates over its pixel: smooth the fine scene to its footprint first
         blurred = ndimage.uniform_filter(image, size=max(1, int(round(pixel / fine))))
-        return interpolate(blurred, fine_cols, fine_rows, "bilinear")
+        return interpolate(blurred, *positions, "bilinear")
 
-    reference = np.round(sample(date1, reference_transform, n_ref, reference_pixel)).astype(np.uint8)
-    adjustment = np.round(sample(date2, adjustment_transform, n_adj, adjustment_pixel)).astype(np.uint8)
-    r, c = np.mgrid[0:n_ref, 0:n_ref] + 0.5
-    map_x, map_y = reference_transform @ (c, r)
-    fine_cols, fine_rows = ~fine_transform @ (map_x, map_y)
-    forest_truth = interpolate(forest, fine_cols, fine_rows, "nearest")
+    on_reference = fine_positions(reference_transform, n_ref)
+    reference = np.round(sample(date1, on_reference, reference_pixel)).astype(np.uint8)
+    adjustment = np.round(sample(date2, fine_positions(adjustment_transform, n_adj),
+                                 adjustment_pixel)).astype(np.uint8)
+    forest_truth = interpolate(forest, *on_reference, "nearest")
     centroids = np.array([[x[forest == k].mean(), y[forest == k].mean()] for k in range(1, n_forest + 1)])
     return Landscape(reference, adjustment, reference_transform, adjustment_transform, forest_truth, centroids)
 
