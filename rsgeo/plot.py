@@ -3,6 +3,8 @@
 Kept apart from the core modules so that rsgeo's maths never imports matplotlib.
 """
 
+import re
+
 import numpy as np
 
 
@@ -140,3 +142,125 @@ def animation_html(animation):
     html = animation.to_jshtml()
     _pyplot().close(animation._fig)
     return HTML(re.sub(r"<link[^>]*font-awesome[^>]*>", "", html))
+
+
+# -- Figure audit: every figure readable on its own -------------------------
+
+_UNIT = re.compile(r"\(.*\S.*\)|\[.*\S.*\]|\bDN\b")   # DN is its own unit
+
+
+def _has_unit(label):
+    return bool(_UNIT.search(label or ""))
+
+
+def _shows_tick_labels(axis):
+    return any(tick.get_visible() and tick.get_text() for tick in axis.get_ticklabels())
+
+
+def _legend_colour(handle):
+    from matplotlib.colors import to_rgba
+
+    for getter in ("get_color", "get_facecolor"):
+        if hasattr(handle, getter):
+            colour = np.asarray(getattr(handle, getter)(), dtype=object)
+            if colour.ndim == 2 or (colour.ndim == 1 and colour.size and not np.isscalar(colour[0])
+                                    and not isinstance(colour[0], str)):
+                colour = colour[0] if len(colour) else None
+            if colour is None:
+                return None
+            try:
+                return np.asarray(to_rgba(tuple(colour) if np.ndim(colour) else colour))
+            except (TypeError, ValueError):
+                return None
+    return None
+
+
+def figure_problems(figure):
+    """What makes a figure hard to read on its own, as a list of sentences (empty: none).
+
+    The course's rules for a figure: every panel has a title (its own or the
+    figure's), every axis that shows tick labels has a label with its units in
+    parentheses or brackets ("row (px)", "ratio (–)"; "DN" counts as its own unit), every colour
+    bar a label with units, and no legend entry is drawn in the panel's
+    background colour (it would be invisible).
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+
+    Returns
+    -------
+    list of str
+        One sentence per problem, naming the panel.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import matplotlib.pyplot as plt
+    >>> fig, ax = plt.subplots()
+    >>> _ = ax.plot([0, 1], [0, 1])
+    >>> figure_problems(fig)[0]
+    'panel 1 of a figure with no title: no title (set one on the panel or the figure)'
+    >>> _ = ax.set(title="a line", xlabel="x (m)", ylabel="y (m)")
+    >>> figure_problems(fig)
+    []
+    >>> plt.close(fig)
+    """
+    from matplotlib.colors import to_rgba
+
+    suptitle = figure._suptitle.get_text() if getattr(figure, "_suptitle", None) else ""
+    panels = [ax for ax in figure.axes if ax.get_visible() and ax.axison]
+    titled_positions = {tuple(np.round(ax.get_position().bounds, 4)) for ax in panels
+                        if ax.get_title() or ax.get_title("left") or ax.get_title("right")}
+    problems = []
+    for number, ax in enumerate(panels, start=1):
+        title = ax.get_title() or ax.get_title("left") or ax.get_title("right")
+        name = f"panel {number} ({title!r})" if title else (
+            f"panel {number} of {suptitle!r}" if suptitle else f"panel {number} of a figure with no title")
+        colorbar = getattr(ax, "_colorbar", None)
+        if colorbar is not None:
+            label = ax.get_ylabel() if colorbar.orientation == "vertical" else ax.get_xlabel()
+            if not _has_unit(label):
+                problems.append(f"{name}: colour bar label {label!r} has no units in parentheses")
+            continue
+        if not (title or suptitle or tuple(np.round(ax.get_position().bounds, 4)) in titled_positions):
+            problems.append(f"{name}: no title (set one on the panel or the figure)")
+        for axis_name, axis, label in (("x", ax.xaxis, ax.get_xlabel()), ("y", ax.yaxis, ax.get_ylabel())):
+            if _shows_tick_labels(axis) and not _has_unit(label):
+                problems.append(f"{name}: {axis_name} label {label!r} has no units in parentheses")
+        legend = ax.get_legend()
+        if legend is not None:
+            background = np.asarray(to_rgba(ax.get_facecolor()))[:3]
+            for handle, text in zip(legend.legend_handles, legend.get_texts()):
+                colour = _legend_colour(handle)
+                if colour is not None and colour[3] > 0 and np.abs(colour[:3] - background).max() < 0.1:
+                    problems.append(f"{name}: legend entry {text.get_text()!r} is drawn in the "
+                                    "background colour")
+    return problems
+
+
+FIGURE_PROBLEMS = []
+
+
+def audit_rendered_figures():
+    """Record :func:`figure_problems` of every figure as it is rendered (shown, saved, animated).
+
+    The tests call this at the top of every notebook they execute and fail on
+    anything in :data:`FIGURE_PROBLEMS`; it patches matplotlib's
+    ``FigureCanvasBase.print_figure`` for the running process only.
+    """
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    if getattr(FigureCanvasBase.print_figure, "_rsgeo_audit", False):
+        return
+    original = FigureCanvasBase.print_figure
+
+    def print_figure(self, *args, **kwargs):
+        for problem in figure_problems(self.figure):
+            if problem not in FIGURE_PROBLEMS:
+                FIGURE_PROBLEMS.append(problem)
+        return original(self, *args, **kwargs)
+
+    print_figure._rsgeo_audit = True
+    FigureCanvasBase.print_figure = print_figure
