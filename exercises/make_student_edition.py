@@ -3,12 +3,16 @@
     python exercises/make_student_edition.py [OUTPUT_FOLDER]     # default: student_edition
 
 Copies the book's sources (``_config.yml``, ``_toc.yml``, ``references.bib``,
-``book/``, ``exercises/``) to OUTPUT_FOLDER. In every notebook, the lines of a
+``book/``, ``exercises/`` and the saved benchmark tables ``benchmarks/results/``
+that chapters show) to OUTPUT_FOLDER. In every exercise notebook, the lines of a
 code cell between ``### BEGIN SOLUTION`` and ``### END SOLUTION`` (both
 included) are removed, leaving the task's ``answer = ...`` placeholder and the
 check that follows it; such cells are shown, not hidden behind a toggle.
-The edition's ``_config.yml`` does not execute notebooks (they stop at the
-first unsolved task, by design), so build it with
+
+The edition is the full course: its chapters are executed when it is built, with
+every figure, exactly as in the instructors' book. Only the exercise notebooks are
+not executed (they stop at the first unsolved task, by design: students run them).
+Build it with
 
     jupyter-book build OUTPUT_FOLDER
 """
@@ -22,7 +26,7 @@ import nbformat
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN, END = "### BEGIN SOLUTION", "### END SOLUTION"
-SOURCES = ("_config.yml", "_toc.yml", "references.bib", "book", "exercises")
+SOURCES = ("_config.yml", "_toc.yml", "references.bib", "book", "exercises", "benchmarks/results")
 
 
 def strip_solutions(source):
@@ -66,14 +70,19 @@ def make_student_edition(output):
     output.mkdir(parents=True)
     for name in SOURCES:
         source = ROOT / name
+        if not source.exists():
+            raise FileNotFoundError(f"{source} is missing: the student edition needs it")
         if source.is_dir():
             shutil.copytree(source, output / name, ignore=shutil.ignore_patterns(
                 "_build", ".ipynb_checkpoints", "__pycache__", "make_student_edition.py"))
         else:
             shutil.copy2(source, output / name)
     config = (output / "_config.yml").read_text()
-    config = re.sub(r"execute_notebooks:.*", "execute_notebooks: \"off\"   # students run them, task by task",
-                    config)
+    # chapters run as in the instructors' book; exercises stop at their first task, so students run them
+    config, count = re.subn(r"^execute:\n", "execute:\n  exclude_patterns:\n    - \"exercises/*\"\n",
+                            config, count=1, flags=re.M)
+    if count != 1:
+        raise ValueError("_config.yml has no `execute:` section to exclude the exercises from")
     config = re.sub(r"^title:\s*(.*)$", r"title: \1 (student edition)", config, count=1, flags=re.M)
     (output / "_config.yml").write_text(config)
     total = sum(student_notebook(path) for path in sorted((output / "exercises").glob("*.ipynb")))

@@ -158,20 +158,16 @@ def _shows_tick_labels(axis):
 
 
 def _legend_colour(handle):
-    from matplotlib.colors import to_rgba
+    """The RGBA colour a legend handle is drawn in, or None when it has none to speak of."""
+    from matplotlib.colors import to_rgba, to_rgba_array
 
     for getter in ("get_color", "get_facecolor"):
         if hasattr(handle, getter):
-            colour = np.asarray(getattr(handle, getter)(), dtype=object)
-            if colour.ndim == 2 or (colour.ndim == 1 and colour.size and not np.isscalar(colour[0])
-                                    and not isinstance(colour[0], str)):
-                colour = colour[0] if len(colour) else None
-            if colour is None:
-                return None
             try:
-                return np.asarray(to_rgba(tuple(colour) if np.ndim(colour) else colour))
+                colours = to_rgba_array(getattr(handle, getter)())
             except (TypeError, ValueError):
                 return None
+            return np.asarray(to_rgba(colours[0])) if len(colours) else None
     return None
 
 

@@ -1,4 +1,5 @@
-"""Every notebook of the book and the exercises runs top to bottom; committed notebooks are clean."""
+"""Every notebook of the book and the exercises runs top to bottom, with readable figures;
+committed notebooks are clean, short-lined, and assert the numbers their prose states."""
 
 import shutil
 import subprocess
@@ -28,7 +29,9 @@ def test_committed_without_outputs(path):
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.name)
 def test_notebook_runs(path):
-    notebook = execute_notebook(path)
+    notebook = execute_notebook(path, audit_figures=True)
+    # every figure it renders (shown, animated, drawn by a widget) is readable on its own
+    assert notebook.metadata["figure_problems"] == [], "\n".join(notebook.metadata["figure_problems"])
     for cell in notebook.cells:
         for output in cell.get("outputs", []):
             assert output.output_type != "error", f"{path.name}: {output.get('ename')}: {output.get('evalue')}"
@@ -44,6 +47,51 @@ def test_chapter_structure(path):
     text = "\n".join(cell.source for cell in nbformat.read(path, as_version=4).cells if cell.cell_type == "markdown")
     for heading in ("## Overview", "## Prerequisites", "## Summary", "## What's next"):
         assert heading in text, f"{path.name} lacks '{heading}'"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.name)
+def test_code_lines_fit_the_page(path):
+    for number, cell in enumerate(nbformat.read(path, as_version=4).cells):
+        if cell.cell_type == "code":
+            for line in cell.source.splitlines():
+                assert len(line) <= 88, f"{path.name}, cell {number}: {len(line)} characters: {line}"
+
+
+CHAPTERS = [path for path in NOTEBOOKS if path.parent.name == "book" and path.name[0].isdigit()]
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=lambda path: path.name)
+def test_chapter_asserts_the_numbers_its_prose_states(path):
+    # a hidden cell (tag remove-cell) after each stated result: a change that moves the result fails
+    # the build instead of falsifying the text
+    cells = nbformat.read(path, as_version=4).cells
+    checks = [cell for cell in cells if cell.cell_type == "code"
+              and "remove-cell" in cell.metadata.get("tags", []) and "assert" in cell.source]
+    assert checks, f"{path.name} has no remove-cell assertion"
+    for cell in checks:
+        assert len(cell.source.splitlines()) <= 15, f"{path.name}: keep assertion cells short"
+
+
+def test_figure_rules_catch_what_they_say():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rsgeo.plot import figure_problems
+
+    figure, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1], color="white", label="true relation")
+    ax.legend()
+    ax.set(title="a line", xlabel="column", ylabel="row (px)")
+    problems = figure_problems(figure)
+    assert any("x label 'column' has no units" in problem for problem in problems)
+    assert any("'true relation' is drawn in the background colour" in problem for problem in problems)
+    assert not any("y label" in problem for problem in problems)
+    image = ax.imshow([[0, 1], [2, 3]])
+    figure.colorbar(image, ax=ax, label="value")
+    assert any("colour bar label 'value'" in problem for problem in figure_problems(figure))
+    plt.close(figure)
 
 
 def failing_notebook(folder):

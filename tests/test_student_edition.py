@@ -1,6 +1,13 @@
-"""The student edition: solutions removed, checks kept, and each notebook stops at its first task."""
+"""The student edition: the full course with only the exercises' solutions removed.
 
+Its chapters are executed when it is built (every figure there), its exercise notebooks stop at
+their first task, and its own build command, from the README, succeeds.
+"""
+
+import re
+import subprocess
 import sys
+from pathlib import Path
 
 import nbformat
 import pytest
@@ -11,10 +18,12 @@ from conftest import ROOT, execute_notebook
 sys.path.insert(0, str(ROOT / "exercises"))
 from make_student_edition import BEGIN, make_student_edition, strip_solutions  # noqa: E402
 
+CHAPTERS = sorted(path.relative_to(ROOT) for path in (ROOT / "book").glob("*.ipynb"))
+
 
 @pytest.fixture(scope="module")
 def edition(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("student")
+    folder = tmp_path_factory.mktemp("student") / "student_edition"
     assert make_student_edition(folder) >= 16
     return folder
 
@@ -24,7 +33,14 @@ def test_solutions_are_gone_and_checks_stay(edition):
         sources = [cell.source for cell in nbformat.read(path, as_version=4).cells if cell.cell_type == "code"]
         assert not any(BEGIN in source for source in sources)
         assert any("check_" in source for source in sources)
-    assert 'execute_notebooks: "off"' in (edition / "_config.yml").read_text()
+
+
+def test_chapters_are_the_instructors_chapters(edition):
+    for chapter in CHAPTERS:
+        assert (edition / chapter).read_bytes() == (ROOT / chapter).read_bytes(), chapter
+    config = (edition / "_config.yml").read_text()
+    assert re.search(r"execute_notebooks:\s*force", config)         # chapters run, figures and all
+    assert re.search(r"exclude_patterns:\n\s+- \"exercises/\*\"", config)   # exercises: students run them
 
 
 @pytest.mark.parametrize("name", sorted(path.name for path in (ROOT / "exercises").glob("*.ipynb")))
@@ -38,6 +54,23 @@ def test_student_notebook_stops_at_its_first_task(edition, name):
     cells = nbformat.read(path, as_version=4).cells
     first_check = next(cell for cell in cells if cell.cell_type == "code" and cell.source.startswith("check_"))
     assert first_check.source in str(failure.value)
+
+
+def test_the_edition_builds_with_every_chapter_executed(edition):
+    # The README's command (`jupyter-book build student_edition`), warnings as errors here.
+    jupyter_book = Path(sys.executable).parent / "jupyter-book"
+    build = subprocess.run([str(jupyter_book), "build", str(edition), "-W", "-n", "--keep-going"],
+                           capture_output=True, text=True, timeout=1500)
+    assert build.returncode == 0, (build.stdout + build.stderr)[-4000:]
+    html = edition / "_build" / "html"
+    for chapter in CHAPTERS:
+        page = (html / chapter.with_suffix(".html")).read_text()
+        assert "cell_output" in page, f"{chapter}: no outputs: the chapter was not executed"
+        if chapter.name.startswith("0") and "_widget" not in chapter.name:
+            assert re.search(r"<img[^>]+(_images/|data:image/png)", page), f"{chapter} has no figure"
+    for exercise in sorted((edition / "exercises").glob("*.ipynb")):
+        page = (html / "exercises" / exercise.with_suffix(".html").name).read_text()
+        assert BEGIN not in page and "check_" in page
 
 
 def test_unbalanced_markers_are_refused():
