@@ -25,7 +25,17 @@ positions rsgeo and ``gdalwarp`` give the same pixels, bit for bit:
 
 GDAL widens the kernels when it downsamples (output pixels larger than 1/0.95
 input pixels); these are the plain 2 x 2 and 4 x 4 kernels, which GDAL uses when
-the scale is 0.95 or more.
+the scale is 0.95 or more. So "bit for bit" holds under these conditions only:
+an integer image (float32 outputs agree within one unit in the last place), a
+scale of 0.95 or more (upsampling or about the same scale), a destination nodata
+(gdalwarp's ``-dstnodata``), float64 arithmetic, and GDAL's exact transformer
+(``-et 0``; its default approximate transformer moves sample positions of
+non-linear mappings by up to 0.125 pixel).
+
+:func:`warp` refuses the two classic silent mistakes: a mapping in the wrong
+direction (image -> map, e.g. a raster's own geotransform instead of its
+inverse), which would give an image of nothing but nodata, and a bands-last
+(rows, cols, 3) array.
 """
 
 import affine
@@ -166,8 +176,9 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
     Raises
     ------
     ValueError
-        If the image is not 2-D or 3-D, the method is unknown, cols and rows
-        differ in shape or hold NaN or infinity, or nodata does not fit the dtype.
+        If the image is not 2-D or 3-D (or looks bands last, (rows, cols, 3)),
+        the method is unknown, cols and rows differ in shape or hold NaN or
+        infinity, or nodata does not fit the dtype.
 
     Examples
     --------
@@ -177,7 +188,7 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
     >>> interpolate(image, [1.5, 5.0], [0.5, 0.5], "nearest", nodata=255)
     array([100, 255], dtype=uint8)
     """
-    image = as_image(image)
+    image = check_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
     cols = np.asarray(cols, dtype=np.float64)
     rows = np.asarray(rows, dtype=np.float64)
@@ -196,9 +207,7 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
     out = np.full((bands.shape[0], flat_cols.size), nodata, dtype=image.dtype)
     for start in range(0, flat_cols.size, _CHUNK):
         c, r = flat_cols[start:start + _CHUNK], flat_rows[start:start + _CHUNK]
-        inside = ((c >= 0) & (r >= 0)
-                  & (np.floor(c + _GDAL_INDEX_EPSILON) < width)
-                  & (np.floor(r + _GDAL_INDEX_EPSILON) < height))
+        inside = _inside(c, r, width, height)
         everywhere = inside.all()
         if not everywhere:
             c, r = c[inside], r[inside]
@@ -351,6 +360,101 @@ def _cubic_interior(flat, width, left, top, dx, dy):
     return total
 
 
+def check_bands_first(image, name="image"):
+    """Raise ValueError if a 3-D image looks bands-last (rows, cols, 3 or 4).
+
+    rsgeo, like rasterio and GDAL, stores several bands first: (bands, rows,
+    cols). An RGB array from matplotlib, Pillow or OpenCV is (rows, cols, 3);
+    read bands first, it would be 351 "bands" of 369 x 3 pixels, and a warp or
+    a GeoTIFF made from it is silently wrong.
+
+    Parameters
+    ----------
+    image : ndarray
+        The image to check.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    ndarray
+        ``image`` unchanged.
+
+    Raises
+    ------
+    ValueError
+        If ``image`` is 3-D, its last axis has 3 or 4 entries and its first
+        two axes are both more than four times longer.
+
+    Examples
+    --------
+    >>> check_bands_first(np.zeros((3, 40, 50))).shape
+    (3, 40, 50)
+    >>> check_bands_first(np.zeros((40, 50, 3)))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: image has shape (40, 50, 3), which looks like bands last ...
+    """
+    shape = np.shape(image)
+    if len(shape) == 3 and shape[2] in (3, 4) and min(shape[0], shape[1]) > 4 * shape[2]:
+        raise ValueError(f"{name} has shape {tuple(shape)}, which looks like bands last "
+                         "(rows, cols, bands); rsgeo needs bands first (bands, rows, cols): "
+                         f"pass np.moveaxis({name}, -1, 0)")
+    return image
+
+
+def check_shape(shape, name="shape"):
+    """Return ``shape`` as a (rows, cols) tuple of positive ints, else raise ValueError.
+
+    Parameters
+    ----------
+    shape : sequence of two numbers
+        A grid size, (rows, cols); whole-valued floats are accepted.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    (int, int)
+
+    Raises
+    ------
+    ValueError
+        If ``shape`` is a single number, has other than two entries, or holds
+        anything but positive whole numbers.
+
+    Examples
+    --------
+    >>> check_shape((351.0, 369))
+    (351, 369)
+    >>> check_shape(351)
+    Traceback (most recent call last):
+    ...
+    ValueError: shape must be (rows, cols), two positive integers, got 351
+    """
+    message = f"{name} must be (rows, cols), two positive integers, got {shape!r}"
+    try:
+        values = tuple(shape)
+    except TypeError:
+        raise ValueError(message) from None
+    if len(values) != 2:
+        raise ValueError(message)
+    try:
+        ok = all(float(n).is_integer() and n >= 1 for n in values)
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise ValueError(message)
+    return int(values[0]), int(values[1])
+
+
+def _inside(cols, rows, width, height):
+    """GDAL's rule for a position inside a width x height image (as in :func:`interpolate`)."""
+    return ((cols >= 0) & (rows >= 0)
+            & (np.floor(cols + _GDAL_INDEX_EPSILON) < width)
+            & (np.floor(rows + _GDAL_INDEX_EPSILON) < height))
+
+
 def grid_positions(shape, transform=None, first_row=0):
     """Map coordinates of the centres of an output grid's cells.
 
@@ -411,8 +515,11 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     Raises
     ------
     ValueError
-        As :func:`interpolate`, or if ``shape`` is not two positive integers,
-        or ``mapping`` does not return an (n, 2) array.
+        As :func:`interpolate`; if ``shape`` is not (rows, cols), two positive
+        integers; if ``mapping`` does not return an (n, 2) array; or if no
+        output cell lands inside the source image (the mapping goes the wrong
+        way, image -> map, or the output grid is somewhere else): a warp
+        that would return nothing but nodata.
 
     Examples
     --------
@@ -421,12 +528,13 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     >>> warp(image, shift, (4, 4))[0]
     array([1, 2, 3, 0], dtype=uint8)
     """
-    image = as_image(image)
+    image = check_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
     check_nodata(nodata, image.dtype)
-    if len(shape) != 2 or min(shape) < 1 or any(int(n) != n for n in shape):
-        raise ValueError(f"shape must be two positive integers (rows, cols), got {shape!r}")
-    out_rows, out_cols = int(shape[0]), int(shape[1])
+    out_rows, out_cols = check_shape(shape)
+    height, width = image.shape[-2:]
+    landed = False
+    spans = []
     bands = image.shape[0] if image.ndim == 3 else None
     out = np.empty(((bands,) if bands else ()) + (out_rows, out_cols), dtype=image.dtype)
     to_map = transform if transform is not None else affine.Affine.identity()
@@ -441,5 +549,29 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
             if source.shape != (x.size, 2):
                 raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")
             source_cols, source_rows = source[:, 0].reshape(x.shape), source[:, 1].reshape(x.shape)
+        if not landed:
+            landed = bool(_inside(source_cols, source_rows, width, height).any())
+            spans.append((source_cols.min(), source_cols.max(),
+                          source_rows.min(), source_rows.max()))
         out[..., start:stop, :] = interpolate(image, source_cols, source_rows, method=method, nodata=nodata)
+    if not landed:
+        raise ValueError(_nothing_lands_message(mapping, spans, width, height))
     return out
+
+
+def _nothing_lands_message(mapping, spans, width, height):
+    """The error of a warp whose output grid falls entirely outside the source."""
+    spans = np.array(spans)
+    where = (f"the output cells fall at source cols {spans[:, 0].min():.6g} to "
+             f"{spans[:, 1].max():.6g}, rows {spans[:, 2].min():.6g} to {spans[:, 3].max():.6g}, "
+             f"outside the image's [0, {width}) x [0, {height})")
+    if isinstance(mapping, affine.Affine):
+        fix = ("for a raster's geotransform (pixel → map) pass its inverse, "
+               "e.g. ~raster.transform")
+    else:
+        fix = ("fit the model from map to image, e.g. "
+               "gcp.fit_polynomial(map_xy, image_xy, order), not image → map; "
+               "for a raster's geotransform pass ~raster.transform")
+    return ("no output cell lands inside the source image: is your mapping map → image "
+            f"(u = f(x, y))? {fix}; also check that the output grid (shape, transform) "
+            f"covers the source's ground ({where})")

@@ -57,3 +57,72 @@ def test_gcp_set_has_a_note_per_point():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     assert len(gcps) == 14 and all(gcps.notes)
     assert gcps.crs.startswith("PROJCS[\"SAD69 / UTM zone 21S\"")
+
+
+def test_path_of_every_shipped_file():
+    for name in data.available():
+        assert data.path(name).suffix == ".tif" and data.path(name).is_file()
+    points = data.path("cbers2b_ccd_hrc")
+    assert points.suffix == ".points" and points.is_file()
+    assert data.path("cbers2b_ccd_hrc.points") == points
+    from rsgeo.gcp import read_points
+
+    np.testing.assert_array_equal(read_points(points).map_xy, data.load_gcps("cbers2b_ccd_hrc").map_xy)
+    with pytest.raises(ValueError, match=r"'landsat'.*nat2.*GCP sets: cbers2b_ccd_hrc.*\.points"):
+        data.path("landsat")
+    with pytest.raises(ValueError, match="unknown dataset 'cbers2b_ccd_hrc'"):
+        data.load("cbers2b_ccd_hrc")        # a GCP set is not a raster
+
+
+def test_raster_repr_is_one_short_line():
+    assert repr(data.load("cbers2b_hrc")) == (
+        "Raster('cbers2b_hrc', 2810 × 2954, uint8, 2.5 m pixels, EPSG:29191)")
+    assert repr(data.load("cbers2b_rgb342")) == (
+        "Raster('cbers2b_rgb342', 3 bands × 351 × 369, uint8, 20 m pixels, EPSG:29191)")
+    assert str(data.load("nat1")) == "Raster('nat1', 1105 × 1102, uint8, 25 m pixels, EPSG:29193)"
+
+
+def test_descriptions_name_the_sensor_only_where_it_is_known():
+    for name in data.available():
+        description = data.load(name).description
+        if name.startswith("cbers"):
+            assert "CBERS" in description
+        else:
+            assert "CBERS" not in description and "undocumented" in description
+
+
+@pytest.mark.parametrize("transform", [
+    (500_000.0, 10.0, 0.0, 7_400_000.0, 0.0, -10.0),          # GDAL's order, a tuple
+    [500_000, 10, 0, 7_400_000, 0, -10],                      # or a list
+])
+def test_save_accepts_a_gdal_ordered_transform(tmp_path, transform):
+    import affine
+    import rasterio
+
+    array = np.arange(12, dtype=np.uint8).reshape(3, 4)
+    written = data.save(tmp_path / "ramp.tif", array, transform=transform, crs="EPSG:31983")
+    with rasterio.open(written) as dataset:
+        assert dataset.transform == affine.Affine(10.0, 0, 500_000.0, 0, -10.0, 7_400_000.0)
+        assert np.array_equal(dataset.read(1), array)
+
+
+def test_save_round_trips_a_raster(tmp_path):
+    import rasterio
+
+    ccd = data.load("cbers2b_rgb342")
+    with rasterio.open(data.save(tmp_path / "ccd.tif", ccd)) as dataset:
+        assert dataset.transform == ccd.transform and dataset.crs == ccd.crs
+        assert np.array_equal(dataset.read(), ccd.array)
+
+
+@pytest.mark.parametrize("transform", [(1.0, 2.0), "EPSG:4326", (1, 2, 3, 4, 5, float("nan"))])
+def test_save_refuses_a_transform_it_cannot_read(tmp_path, transform):
+    with pytest.raises(ValueError, match="transform must be an affine.Affine or 6 finite numbers"):
+        data.save(tmp_path / "x.tif", np.zeros((3, 4), np.uint8), transform=transform)
+
+
+def test_save_refuses_a_bands_last_rgb_array(tmp_path):
+    rgb = np.moveaxis(data.load("cbers2b_rgb342").array, 0, -1)      # (351, 369, 3)
+    with pytest.raises(ValueError, match=r"bands last.*np\.moveaxis\(array, -1, 0\)"):
+        data.save(tmp_path / "rgb.tif", rgb)
+    assert not (tmp_path / "rgb.tif").exists()

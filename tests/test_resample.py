@@ -160,3 +160,56 @@ def test_warp_rejects_a_bad_mapping_and_shape():
         warp(image, lambda points: points[:, 0], (2, 2))
     with pytest.raises(ValueError, match="two positive integers"):
         warp(image, affine.Affine.identity(), (0, 2))
+
+
+# -- silent failures turned into errors ---------------------------------------
+
+
+def test_warp_in_the_wrong_direction_is_an_error_not_an_empty_image():
+    image = noise((300, 400))
+    shape = (300, 400)
+    # right: map -> image, the inverse of the raster's geotransform; the same grid gives the image back
+    assert np.array_equal(warp(image, ~SOURCE_TRANSFORM, shape, SOURCE_TRANSFORM), image)
+    # wrong: the raster's own transform, pixel -> map
+    with pytest.raises(ValueError, match=r"no output cell lands inside the source image: is your "
+                                         r"mapping map → image \(u = f\(x, y\)\)\?.*~raster.transform"):
+        warp(image, SOURCE_TRANSFORM, shape, SOURCE_TRANSFORM)
+
+
+def test_a_model_fitted_image_to_map_is_an_error():
+    image = noise((300, 400))
+    rng = np.random.default_rng(5)
+    image_xy = rng.uniform(0, 300, (8, 2))
+    map_xy = np.column_stack(SOURCE_TRANSFORM @ (image_xy[:, 0], image_xy[:, 1]))
+    right = gcp.fit_polynomial(map_xy, image_xy, 1)
+    wrong = gcp.fit_polynomial(image_xy, map_xy, 1)
+    assert np.array_equal(warp(image, right, (300, 400), SOURCE_TRANSFORM), image)
+    with pytest.raises(ValueError, match=r"map → image.*fit_polynomial\(map_xy, image_xy"):
+        warp(image, wrong, (300, 400), SOURCE_TRANSFORM)
+
+
+def test_a_grid_that_partly_covers_the_source_is_fine():
+    image = noise((50, 50))
+    out = warp(image, affine.Affine.translation(40, 0), (50, 50), method="bilinear")
+    assert (out[:, :10] != 0).all() and (out[:, 10:] == 0).all()
+
+
+@pytest.mark.parametrize("shape", [(351, 369, 3), (351, 369, 4), (20, 17, 3)])
+def test_bands_last_images_are_refused_with_the_fix(shape):
+    image = np.zeros(shape, dtype=np.uint8)
+    with pytest.raises(ValueError, match=r"bands last.*np\.moveaxis\(image, -1, 0\)"):
+        warp(image, affine.Affine.identity(), shape[:2])
+    with pytest.raises(ValueError, match="bands last"):
+        interpolate(image, [0.5], [0.5])
+
+
+@pytest.mark.parametrize("shape", [(3, 351, 369), (4, 10, 4), (3, 12, 3), (30, 12, 60)])
+def test_bands_first_images_are_accepted(shape):
+    image = noise(shape)
+    assert warp(image, affine.Affine.identity(), shape[1:]).shape == shape
+
+
+@pytest.mark.parametrize("shape", [351, 351.0, (351,), (2, 2, 2), ("a", 2), (2.5, 3), (0, 2), None])
+def test_warp_shape_must_be_rows_cols(shape):
+    with pytest.raises(ValueError, match=r"shape must be \(rows, cols\)"):
+        warp(np.zeros((4, 4), dtype=np.uint8), affine.Affine.identity(), shape)

@@ -1,9 +1,11 @@
-"""Real CBERS-2/2B imagery shipped with rsgeo, read with rasterio.
+"""Real imagery shipped with rsgeo, read with rasterio: CBERS-2/2B scenes and two 25 m scenes.
 
 Every file comes from the Debian package ``libterralib-doc`` (TerraLib 4.3
 examples, INPE and Tecgraf/PUC-Rio, LGPL-2.1+); see ``README.md`` beside this
-file for provenance, sizes and licence. Nothing is downloaded: the files are
-inside the package.
+file for provenance, sizes and licence. Five scenes are CBERS-2/2B (their
+TerraLib file names say so); ``nat1`` and ``nat2`` are 25 m scenes whose
+sensor neither TerraLib nor the files' metadata documents. Nothing is
+downloaded: the files are inside the package; :func:`path` gives their paths.
 
 Examples
 --------
@@ -13,6 +15,10 @@ True
 >>> scene = data.load("cbers_b2_A")
 >>> scene.array.shape, scene.array.dtype.name, scene.pixel_size
 ((604, 568), 'uint8', (20.0, 20.0))
+>>> scene
+Raster('cbers_b2_A', 604 × 568, uint8, 20 m pixels, EPSG:29192)
+>>> data.path("cbers2b_ccd_hrc").name
+'cbers2b_ccd_hrc.points'
 """
 
 from dataclasses import dataclass
@@ -44,10 +50,12 @@ _DATASETS = {
         "CBERS-2 CCD band 2, 20 m, crop C, overlapping A and B (SAD69 / UTM 22S)."),
     "nat1": (
         "nat1.tif",
-        "Scene 1 of an overlapping pair, 25 m, one band (SAD69 / UTM 23S); overlaps nat2."),
+        "Scene 1 of an overlapping pair, 25 m, one band, 8 bit (SAD69 / UTM 23S); overlaps "
+        "nat2. Sensor and date undocumented (TerraLib's mosaic example)."),
     "nat2": (
         "nat2.tif",
-        "Scene 2 of an overlapping pair, 25 m, one band (SAD69 / UTM 23S); overlaps nat1."),
+        "Scene 2 of an overlapping pair, 25 m, one band, 8 bit (SAD69 / UTM 23S); overlaps "
+        "nat1. Sensor and date undocumented (TerraLib's mosaic example)."),
 }
 
 
@@ -68,7 +76,7 @@ _GCP_FILES = {
 }
 
 
-@dataclass
+@dataclass(repr=False)
 class Raster:
     """Pixels with their georeferencing.
 
@@ -90,6 +98,33 @@ class Raster:
     nodata: object
     description: str
     name: str = ""
+
+    def __repr__(self):
+        """One line: name, shape, dtype, pixel size and CRS code (not the pixels nor the WKT).
+
+        Examples
+        --------
+        >>> import affine
+        >>> Raster(np.zeros((3, 4, 5), np.uint8), affine.Affine(2.5, 0, 0, 0, -2.5, 0),
+        ...        None, None, "", "test")
+        Raster('test', 3 bands × 4 × 5, uint8, 2.5 pixels, no CRS)
+        """
+        shape = " × ".join(str(n) for n in self.array.shape[-2:])
+        if self.array.ndim == 3:
+            shape = f"{self.array.shape[0]} bands × {shape}"
+        try:
+            x_size, y_size = self.pixel_size
+            size = f"{x_size:g}" if x_size == y_size else f"{x_size:g} × {y_size:g}"
+        except (AttributeError, TypeError):
+            size = "?"
+        if self.crs is None:
+            crs, units = "no CRS", "pixels"
+        else:
+            epsg = self.crs.to_epsg()
+            crs = f"EPSG:{epsg}" if epsg else (self.crs.to_string()[:40] or "CRS")
+            units = "m pixels" if self.crs.linear_units in ("metre", "meter") else "pixels"
+            units = units if self.crs.is_projected else "° pixels"
+        return f"Raster({self.name!r}, {shape}, {self.array.dtype}, {size} {units}, {crs})"
 
     @property
     def pixel_size(self):
@@ -116,10 +151,43 @@ def available():
 
 
 def path(name):
-    """Path of a shipped dataset's GeoTIFF (to open it with rasterio or QGIS)."""
-    if name not in _DATASETS:
-        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(available())}")
-    return _FOLDER / _DATASETS[name][0]
+    """Path of a shipped file: a dataset's GeoTIFF or a GCP set's .points file.
+
+    To open a scene in QGIS or with rasterio, or a GCP set in QGIS's
+    Georeferencer (Settings → Load GCP points).
+
+    Parameters
+    ----------
+    name : str
+        A dataset name (:func:`available`), a GCP set name
+        (:func:`available_gcps`), or a shipped file's name
+        (``"nat1.tif"``, ``"cbers2b_ccd_hrc.points"``).
+
+    Returns
+    -------
+    pathlib.Path
+        The file inside the installed package.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name; the message lists every shipped dataset, GCP set
+        and file.
+
+    Examples
+    --------
+    >>> path("nat1").name, path("cbers2b_ccd_hrc").suffix, path("nat2.tif").name
+    ('nat1.tif', '.points', 'nat2.tif')
+    """
+    files = {**{key: entry[0] for key, entry in _DATASETS.items()},
+             **{key: entry[0] for key, entry in _GCP_FILES.items()}}
+    if name in files:
+        return _FOLDER / files[name]
+    if name in files.values():
+        return _FOLDER / name
+    raise ValueError(f"no shipped file named {name!r}; datasets: {', '.join(available())}; "
+                     f"GCP sets: {', '.join(available_gcps())}; "
+                     f"files: {', '.join(sorted(files.values()))}")
 
 
 def load(name):
@@ -141,7 +209,9 @@ def load(name):
     """
     import rasterio
 
-    file = path(name)
+    if name not in _DATASETS:
+        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(available())}")
+    file = _FOLDER / _DATASETS[name][0]
     with rasterio.open(file) as dataset:
         array = dataset.read()
         raster = Raster(array[0] if dataset.count == 1 else array, dataset.transform,
@@ -172,16 +242,77 @@ def load_gcps(name):
 
 
 def save(file, raster_or_array, transform=None, crs=None, nodata=None):
-    """Write an array (or a :class:`Raster`) as a GeoTIFF, to open it in QGIS."""
+    """Write an array (or a :class:`Raster`) as a GeoTIFF, to open it in QGIS.
+
+    Parameters
+    ----------
+    file : str or path-like
+        The GeoTIFF to write (DEFLATE-compressed).
+    raster_or_array : Raster or ndarray
+        A :class:`Raster` (its own transform, CRS and nodata are used), or an
+        array: (rows, cols) for one band, (bands, rows, cols) for several.
+    transform : affine.Affine or sequence of 6 numbers, optional
+        Pixel corner (col, row) → map (x, y). A 6-tuple is read in GDAL's
+        order (x0, pixel width, row rotation, y0, column rotation, pixel
+        height), as ``dataset.GetGeoTransform()`` and ``gdalinfo`` give it.
+    crs : str, int or rasterio CRS, optional
+        E.g. ``"EPSG:29191"``.
+    nodata : number, optional
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ValueError
+        If the array is not 2-D or 3-D bands first (a (rows, cols, 3) RGB
+        array is refused with the fix), or ``transform`` is neither an Affine
+        nor 6 numbers.
+
+    Examples
+    --------
+    >>> import tempfile, rasterio
+    >>> folder = tempfile.mkdtemp()
+    >>> written = save(f"{folder}/ramp.tif", np.arange(12, dtype=np.uint8).reshape(3, 4),
+    ...                transform=(500000.0, 10.0, 0.0, 7400000.0, 0.0, -10.0), crs="EPSG:31983")
+    >>> with rasterio.open(written) as dataset:
+    ...     dataset.transform.c, dataset.transform.a, dataset.crs.to_epsg()
+    (500000.0, 10.0, 31983)
+    """
     import rasterio
+
+    from .._checks import as_image
+    from ..resample import check_bands_first
 
     if isinstance(raster_or_array, Raster):
         array, transform, crs, nodata = (raster_or_array.array, raster_or_array.transform,
                                          raster_or_array.crs, raster_or_array.nodata)
     else:
         array = np.asarray(raster_or_array)
+    array = check_bands_first(as_image(array, "array"), "array")
+    transform = _as_affine(transform)
     bands = array if array.ndim == 3 else array[np.newaxis]
     with rasterio.open(file, "w", driver="GTiff", width=bands.shape[2], height=bands.shape[1],
                        count=bands.shape[0], dtype=bands.dtype, transform=transform, crs=crs,
                        nodata=nodata, compress="deflate") as dataset:
         dataset.write(bands)
+    return Path(file)
+
+
+def _as_affine(transform):
+    """An affine.Affine from an Affine, a GDAL-ordered 6-tuple or None (identity)."""
+    import affine
+
+    if transform is None or isinstance(transform, affine.Affine):
+        return transform
+    try:
+        values = [float(v) for v in transform]
+    except (TypeError, ValueError):
+        values = None
+    if values is None or len(values) != 6 or not np.isfinite(values).all():
+        raise ValueError(f"transform must be an affine.Affine or 6 finite numbers in GDAL's "
+                         f"order (x0, pixel width, row rotation, y0, column rotation, "
+                         f"pixel height), got {transform!r}")
+    return affine.Affine.from_gdal(*values)
