@@ -7,7 +7,7 @@ equatorial radius 6378.137 km and the sidereal rate 7.292115e-5 rad/s; a
 circular orbit's angular rate comes from its altitude by Kepler's third law.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -48,14 +48,40 @@ def track_angle(latitude_deg, inclination_deg=98.2):
     return float(np.degrees(np.arcsin(sine)))
 
 
-def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, inclination_deg=98.2):
-    """Eastward offset (km) of a frame's last line relative to its first.
+PASS_DIRECTIONS = ("descending", "ascending")
 
-    Lecture, slide "Distorção - rotação da Terra": while the satellite images
-    a frame, the Earth turns west to east under it, so successive lines are
-    shifted. The offset is Δx = ωe·Re·cos φ · t · cos ζ, with t the time to
-    image the frame (frame length / ground-track speed) and ζ the angle
-    between the ground track and the meridian (Richards & Jia, ch. 2).
+
+def _check_pass(pass_direction):
+    if pass_direction not in PASS_DIRECTIONS:
+        raise ValueError(f"pass_direction must be 'descending' (north to south, the daytime pass of "
+                         f"Landsat and CBERS) or 'ascending' (south to north), got {pass_direction!r}")
+    return pass_direction
+
+
+def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, inclination_deg=98.2,
+                        pass_direction="descending"):
+    """Size (km) of the across-track offset between a frame's last line and its first.
+
+    Lecture, slide "Distorção - rotação da Terra": the Earth turns west to
+    east while the satellite images a frame, so each line's ground lies
+    further **west** than the previous line's ("deslocamento relativo das
+    linhas para oeste"). The size of the offset is
+    Δx = ωe·Re·cos φ · t · cos ζ, with t the time to image the frame (frame
+    length / ground-track speed) and ζ the angle between the ground track and
+    the meridian (Richards & Jia, ch. 2).
+
+    Direction: the ground under the last line lies WEST of the first line's
+    (across the track), on either pass; :func:`earth_rotation_offset` gives it
+    as an (east, north) vector.
+
+    * ``"descending"`` (north to south; Landsat's and CBERS's daytime passes):
+      the last line is the southern one, so the frame's southern end lies west
+      of its northern end; the offset points west and slightly north
+      (perpendicular to the south-south-west track).
+    * ``"ascending"`` (south to north): the last line is the northern one, so
+      the northern end lies west; the offset points west and slightly south.
+
+    The returned value is the size only, the same on both passes.
 
     Parameters
     ----------
@@ -67,23 +93,28 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, 
         Orbit altitude (Landsat 7/8: 705 km).
     inclination_deg : float
         Orbit inclination (Landsat 7/8: 98.2°).
+    pass_direction : {"descending", "ascending"}
+        Which way the satellite crosses the scene (see above for the direction).
 
     Returns
     -------
     float
-        Offset in km; zero at the poles of the orbit's reach.
+        Size of the westward offset in km (≥ 0); zero at the orbit's highest latitude.
 
     Raises
     ------
     ValueError
         For a latitude outside ±90°, a non-positive altitude or frame length,
-        or a latitude the orbit never reaches.
+        a latitude the orbit never reaches, or an unknown pass direction.
 
     Examples
     --------
-    >>> round(earth_rotation_skew(0.0), 2)      # Landsat frame at the equator
+    >>> round(earth_rotation_skew(0.0), 2)      # Landsat frame at the equator: 12.6 km west
     12.6
+    >>> earth_rotation_skew(0.0, pass_direction="ascending") == earth_rotation_skew(0.0)
+    True
     """
+    _check_pass(pass_direction)
     check_range(frame_length_km, "frame_length_km", low=0, why="a length")
     zeta = np.radians(track_angle(latitude_deg, inclination_deg))
     imaging_time = frame_length_km / ground_track_speed(altitude_km)
@@ -91,12 +122,87 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, 
     return float(surface_speed * imaging_time * np.cos(zeta))
 
 
-def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclination_deg=98.2):
+def earth_rotation_offset(latitude_deg, frame_length_km=185.0, altitude_km=705.0, inclination_deg=98.2,
+                          pass_direction="descending"):
+    """Where the ground under a frame's last line lies relative to the first line's: (east, north) km.
+
+    The offset is across the ground track, of size :func:`earth_rotation_skew`,
+    on the track's west side. A retrograde sun-synchronous orbit (inclination
+    over 90°) heads south-south-west on its descending pass, at the angle ζ of
+    :func:`track_angle` west of south, and north-north-west on its ascending
+    pass; the offset is perpendicular to that heading.
+
+    Parameters
+    ----------
+    latitude_deg, frame_length_km, altitude_km, inclination_deg, pass_direction
+        As in :func:`earth_rotation_skew`.
+
+    Returns
+    -------
+    east_km, north_km : float
+        East component always negative (the last line's ground is west of the
+        first's); north component positive on a descending pass, negative on an
+        ascending one.
+
+    Examples
+    --------
+    >>> east, north = earth_rotation_offset(-23.5, 113.0, 778.0, 98.5)    # CBERS over São Paulo
+    >>> round(east, 2), round(north, 2)
+    (-7.05, 1.15)
+    """
+    size = earth_rotation_skew(latitude_deg, frame_length_km, altitude_km, inclination_deg,
+                               pass_direction)
+    zeta = np.radians(track_angle(latitude_deg, inclination_deg))
+    north = np.sin(zeta) if pass_direction == "descending" else -np.sin(zeta)
+    if np.cos(np.radians(inclination_deg)) > 0:        # prograde orbit: the track leans east
+        north = -north
+    return float(-size * np.cos(zeta)), float(size * north)
+
+
+def frame_outline(latitude_deg, frame_length_km, width_km, altitude_km=705.0, inclination_deg=98.2,
+                  pass_direction="descending", earth_rotation=True):
+    """Corners (east, north) in km of a frame on the ground, first line centred at (0, 0).
+
+    The frame runs ``frame_length_km`` along the ground track's heading
+    (south-south-west on a descending pass of a retrograde orbit, north-north-
+    west on an ascending one) and ``width_km`` across it. With
+    ``earth_rotation`` the last line is moved by :func:`earth_rotation_offset`
+    (west), the first line stays: the rectangle becomes the parallelogram the
+    scene really covers.
+
+    Returns
+    -------
+    east_km, north_km : ndarray, shape (5,)
+        Closed outline: first line's two ends, last line's two ends, back to the start.
+
+    Examples
+    --------
+    >>> east, north = frame_outline(0.0, 185.0, 185.0, earth_rotation=False)
+    >>> round(float(np.hypot(east[2] - east[1], north[2] - north[1])), 1)   # along-track side
+    185.0
+    """
+    check_range(width_km, "width_km", low=0, why="a width")
+    offset = np.array(earth_rotation_offset(latitude_deg, frame_length_km, altitude_km, inclination_deg,
+                                            pass_direction))
+    zeta = np.radians(track_angle(latitude_deg, inclination_deg))
+    retrograde = np.cos(np.radians(inclination_deg)) < 0      # heads west of the meridian
+    north = -np.cos(zeta) if pass_direction == "descending" else np.cos(zeta)
+    heading = np.array([-np.sin(zeta) if retrograde else np.sin(zeta), north])
+    right = np.array([heading[1], -heading[0]]) * width_km / 2
+    last = frame_length_km * heading + (offset if earth_rotation else 0.0)
+    corners = np.array([-right, right, last + right, last - right, -right])
+    return corners[:, 0], corners[:, 1]
+
+
+def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclination_deg=98.2,
+                  pass_direction="descending"):
     """Earth-rotation offset, in pixels, between successive lines of a scene of ``lines`` lines.
 
-    The frame is ``lines × pixel_size_km`` long; its last line is offset by
-    :func:`earth_rotation_skew`, spread evenly over the lines (the systematic
-    correction shifts line n back by n times this value).
+    The frame is ``lines × pixel_size_km`` long; its last line's ground lies
+    :func:`earth_rotation_skew` west of its first line's, spread evenly over
+    the lines (each line's ground is this many pixels west of the previous
+    line's; the systematic correction shifts line n back east by n times this
+    value). Positive on both passes: the size, as in :func:`earth_rotation_skew`.
 
     Examples
     --------
@@ -106,7 +212,8 @@ def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclina
     if int(lines) != lines or lines < 1:
         raise ValueError(f"lines must be a positive whole number, got {lines!r}")
     check_range(pixel_size_km, "pixel_size_km", low=1e-12, why="a size")
-    offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km, inclination_deg)
+    offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km, inclination_deg,
+                                    pass_direction)
     return offset_km / pixel_size_km / lines
 
 
@@ -216,12 +323,213 @@ def panoramic_displacement(scan_angle_deg, altitude_km, curved_earth=True):
     return ground_distance(np.degrees(theta), altitude_km, curved_earth) - altitude_km * theta
 
 
-def attitude_displacement(angle_deg, altitude_km, curved_earth=True):
-    """Ground displacement (km) of nadir for a roll (across track) or pitch (along track) angle.
+def _look_vector(theta, psi=0.0, epsilon=0.0):
+    """Unit look vector (across, along, up) of a scanner on a platform pitched by psi.
 
-    Flat Earth h·tan(angle); curved Earth the arc R·γ.
+    The scan mirror turns about the along-track axis (scan angle theta, to
+    which a roll adds); a detector sits epsilon along track in the focal plane;
+    platform pitch psi turns everything about the across-track axis.
     """
-    return ground_distance(angle_deg, altitude_km, curved_earth)
+    theta, psi, epsilon = np.broadcast_arrays(*(np.asarray(a, dtype=np.float64)
+                                                for a in (theta, psi, epsilon)))
+    x = np.cos(epsilon) * np.sin(theta)
+    y = np.sin(epsilon)
+    z = -np.cos(epsilon) * np.cos(theta)
+    return x, y * np.cos(psi) - z * np.sin(psi), y * np.sin(psi) + z * np.cos(psi)
+
+
+def _ground_point(altitude_km, theta, psi=0.0, epsilon=0.0, curved_earth=True):
+    """3-D ground point (km) a look ray hits: Earth's centre at the origin, or flat ground at z = 0."""
+    ux, uy, uz = _look_vector(theta, psi, epsilon)
+    if not curved_earth:
+        if np.any(uz >= 0):
+            raise ValueError("the look direction does not reach a flat ground "
+                             "(it points at or above the horizon)")
+        t = altitude_km / -uz
+        return t * ux, t * uy, np.zeros_like(t)
+    height = EARTH_RADIUS_KM + altitude_km
+    b = height * -uz
+    disc = b ** 2 - (height ** 2 - EARTH_RADIUS_KM ** 2)
+    if np.any(disc < 0) or np.any(b <= 0):
+        raise ValueError("the look direction misses the Earth: scan plus roll angle is beyond the "
+                         f"horizon ({np.degrees(np.arcsin(EARTH_RADIUS_KM / height)):.2f}° from "
+                         f"{altitude_km} km)")
+    t = b - np.sqrt(disc)
+    return t * ux, t * uy, height + t * uz
+
+
+def _surface_distance(p, q, curved_earth=True):
+    """Distance (km) along the ground between two points from :func:`_ground_point`."""
+    chord = np.sqrt(sum((a - b) ** 2 for a, b in zip(p, q)))
+    if not curved_earth:
+        return chord
+    return 2 * EARTH_RADIUS_KM * np.arcsin(np.minimum(chord / (2 * EARTH_RADIUS_KM), 1.0))
+
+
+def _orbit_coordinates(point):
+    """(across, along) km of a ground point in the orbit-aligned grid: R·asin(x/R), R·atan2(y, z)."""
+    x, y, z = point
+    return EARTH_RADIUS_KM * np.arcsin(x / EARTH_RADIUS_KM), EARTH_RADIUS_KM * np.arctan2(y, z)
+
+
+def attitude_displacement(angle_deg, altitude_km, curved_earth=True, scan_angle_deg=0.0, axis="roll"):
+    """Ground displacement (km) of the point seen at a scan angle when the platform rolls or pitches.
+
+    A **roll** turns the platform about the along-track axis, the axis the scan
+    mirror turns about: it adds ``angle_deg`` to every scan angle, so the
+    point seen at scan angle θ moves across track from d(θ) to d(θ + angle),
+    with d of :func:`ground_distance`. That is h·tan(angle) only at nadir:
+    towards the swath edge the same roll moves the ground more (0.1° from
+    705 km: 1.23 km at nadir, about 6.0 km at 55° on a curved Earth, 3.75 km
+    on a flat one).
+
+    A **pitch** turns the platform about the across-track axis: the ray seen
+    at scan angle θ swings along track, by h·tan(angle) on a flat Earth at
+    every θ and a little more towards the edge on a curved one.
+
+    Parameters
+    ----------
+    angle_deg : float or ndarray
+        Roll or pitch angle (degrees); its sign gives the displacement's.
+    altitude_km : float
+    curved_earth : bool
+    scan_angle_deg : float or ndarray
+        Where in the swath (0, the default, is nadir).
+    axis : {"roll", "pitch"}
+
+    Returns
+    -------
+    float or ndarray
+        km, across track for a roll, along track for a pitch.
+
+    Raises
+    ------
+    ValueError
+        For an unknown axis, or angles that look beyond the horizon.
+
+    Examples
+    --------
+    >>> round(float(attitude_displacement(0.1, 705.0)), 2)             # nadir
+    1.23
+    >>> round(float(attitude_displacement(0.1, 705.0, scan_angle_deg=55.0)), 1)
+    6.0
+    >>> round(float(attitude_displacement(0.1, 705.0, False, 55.0)), 2)
+    3.75
+    """
+    if axis not in ("roll", "pitch"):
+        raise ValueError(f"axis must be 'roll' or 'pitch', got {axis!r}")
+    angle = np.asarray(angle_deg, dtype=np.float64)
+    scan = np.asarray(scan_angle_deg, dtype=np.float64)
+    if axis == "roll":
+        _check_scan(scan + angle, altitude_km)
+        return (ground_distance(scan + angle, altitude_km, curved_earth)
+                - ground_distance(scan, altitude_km, curved_earth))
+    theta = _check_scan(scan, altitude_km)
+    before = _ground_point(altitude_km, theta, 0.0, curved_earth=curved_earth)
+    after = _ground_point(altitude_km, theta, np.radians(angle), curved_earth=curved_earth)
+    return np.sign(angle) * _surface_distance(before, after, curved_earth)
+
+
+def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0, curved_earth=True):
+    """Along-track length (km) of the ground one scan of a whiskbroom scanner covers at a scan angle.
+
+    MODIS records ``detectors`` lines per turn of its scan mirror (10 for the
+    1 km bands); the detectors sit side by side along track, each seeing
+    β = nadir pixel / h. The scan's footprint runs from the first detector's
+    outer edge to the last one's: ``detectors × nadir_pixel_km`` at nadir,
+    longer towards the edge, like the along-track pixel of :func:`pixel_size`.
+
+    Parameters
+    ----------
+    scan_angle_deg : float or ndarray
+    altitude_km : float
+    detectors : int
+        Detectors along track (lines per scan).
+    nadir_pixel_km : float
+    curved_earth : bool
+
+    Returns
+    -------
+    float or ndarray
+        Footprint length along track, km.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive detector count or pixel, or a scan angle beyond the horizon.
+
+    Examples
+    --------
+    >>> round(float(scan_footprint(0.0, 705.0)), 2), round(float(scan_footprint(55.0, 705.0)), 1)
+    (10.0, 20.1)
+    """
+    if int(detectors) != detectors or detectors < 1:
+        raise ValueError(f"detectors must be a positive whole number, got {detectors!r}")
+    check_range(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
+    theta = _check_scan(scan_angle_deg, altitude_km)
+    half = detectors * nadir_pixel_km / altitude_km / 2
+    first = _ground_point(altitude_km, theta, epsilon=-half, curved_earth=curved_earth)
+    last = _ground_point(altitude_km, theta, epsilon=half, curved_earth=curved_earth)
+    return _surface_distance(first, last, curved_earth)
+
+
+def bowtie_overlap(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0, curved_earth=True):
+    """Fraction of a scan's footprint that the next scan covers again: the MODIS bow-tie effect.
+
+    The platform advances one nadir footprint (``detectors × nadir_pixel_km``)
+    per scan, so successive scans abut at nadir; away from nadir each
+    footprint (:func:`scan_footprint`) is longer than the advance and the
+    scans overlap by 1 − advance / footprint.
+
+    Parameters
+    ----------
+    scan_angle_deg, altitude_km, detectors, nadir_pixel_km, curved_earth
+        As in :func:`scan_footprint`.
+
+    Returns
+    -------
+    float or ndarray
+        Overlap fraction, 0 (scans just touch) to 1.
+
+    Examples
+    --------
+    >>> round(float(bowtie_overlap(55.0, 705.0)), 2)       # MODIS swath edge: about half
+    0.5
+    """
+    footprint = scan_footprint(scan_angle_deg, altitude_km, detectors, nadir_pixel_km, curved_earth)
+    advance = scan_footprint(0.0, altitude_km, detectors, nadir_pixel_km, curved_earth)
+    return np.maximum(0.0, 1.0 - advance / footprint)
+
+
+def scan_edges(scan_index, scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0,
+               curved_earth=True):
+    """Across-track position and along-track edges (km) of scan number ``scan_index``'s footprint.
+
+    For drawing the bow-tie: scan k is centred k advances along track (one
+    advance = the nadir footprint of :func:`scan_footprint`).
+
+    Returns
+    -------
+    across_km, first_km, last_km : ndarray
+        Ground distance from nadir (signed like the scan angle) and the
+        footprint's two along-track edges, in the orbit-aligned grid
+        (along = R·atan2(y, z) on a curved Earth).
+
+    Examples
+    --------
+    >>> across, first, last = scan_edges(1, [0.0], 705.0)
+    >>> round(float(first[0]), 2), round(float(last[0]), 2)
+    (5.0, 15.0)
+    """
+    theta = _check_scan(scan_angle_deg, altitude_km)
+    half = detectors * nadir_pixel_km / altitude_km / 2
+    advance = scan_footprint(0.0, altitude_km, detectors, nadir_pixel_km, curved_earth)
+    edges = []
+    for epsilon in (-half, half):
+        point = _ground_point(altitude_km, theta, epsilon=epsilon, curved_earth=curved_earth)
+        edges.append(_orbit_coordinates(point)[1] if curved_earth else point[1])
+    across = ground_distance(np.degrees(theta), altitude_km, curved_earth)
+    return across, scan_index * advance + edges[0], scan_index * advance + edges[1]
 
 
 # --------------------------------------------------------------------------
@@ -242,12 +550,19 @@ class SystematicDistortion:
     skew_per_line : float
         Earth rotation: columns of offset per line (the km offset of
         :func:`earth_rotation_skew` divided by pixel size and line count).
+        Positive: each line's ground lies this much further towards column 0
+        (west, on a descending pass shown north up) than the previous line's,
+        so the recorded image shows features sliding towards higher columns.
     scale : float
         Altitude change: h / h_nominal; above 1 the sensor sees more ground
         per pixel, so the image shrinks.
     roll_px, pitch_px : float
-        Attitude: shift of the whole image across and along track, in pixels
-        (:func:`attitude_displacement` over the pixel size).
+        Attitude, in instantaneous fields of view (nadir pixels of angle): the
+        recorded content moves towards higher columns (roll) or rows (pitch).
+        Without view geometry this is a uniform shift of the whole image, the
+        narrow-field approximation; with view geometry the angle is applied in
+        scan-angle space, so a roll moves the ground more towards the swath
+        edge (:func:`attitude_displacement`).
     yaw_deg : float
         Constant yaw: rotation of the image about nadir.
     yaw_rate_deg_per_line : float
@@ -255,7 +570,17 @@ class SystematicDistortion:
     view_altitude_km, nadir_pixel_km : float or None
         Wide field of view: when given, columns are scan angles of equal
         steps (nadir pixel / altitude), so pixels away from nadir cover more
-        ground (the panoramic distortion on a curved Earth).
+        ground (the panoramic distortion on a curved Earth). The true grid is
+        then the orbit-aligned ground grid of :func:`scan_edges` in nadir pixels.
+    roll_deg, pitch_deg : float
+        Attitude in degrees, added to ``roll_px`` and ``pitch_px``; they need
+        the view geometry (the altitude turns an angle into ground).
+
+    Raises
+    ------
+    ValueError
+        For a non-positive scale, only one of the two view-geometry values, or
+        an attitude in degrees without view geometry.
     """
 
     skew_per_line: float = 0.0
@@ -266,11 +591,69 @@ class SystematicDistortion:
     yaw_rate_deg_per_line: float = 0.0
     view_altitude_km: float = None
     nadir_pixel_km: float = None
+    roll_deg: float = 0.0
+    pitch_deg: float = 0.0
 
     def __post_init__(self):
         check_range(self.scale, "scale", low=1e-6, why="a ratio of altitudes")
         if (self.view_altitude_km is None) != (self.nadir_pixel_km is None):
             raise ValueError("view_altitude_km and nadir_pixel_km go together: give both or neither")
+        if self.view_altitude_km is None and (self.roll_deg or self.pitch_deg):
+            raise ValueError("roll_deg and pitch_deg need view_altitude_km and nadir_pixel_km (an "
+                             "angle moves the ground by an amount that depends on the altitude); "
+                             "without them give roll_px and pitch_px")
+
+    @property
+    def _ifov(self):
+        return self.nadir_pixel_km / self.view_altitude_km
+
+    def attitude_rad(self):
+        """Total (roll, pitch) in radians, with view geometry: degrees plus pixels × IFOV."""
+        if self.view_altitude_km is None:
+            raise ValueError("attitude in radians needs view_altitude_km and nadir_pixel_km")
+        return (np.radians(self.roll_deg) + self.roll_px * self._ifov,
+                np.radians(self.pitch_deg) + self.pitch_px * self._ifov)
+
+    def with_knowledge_errors(self, roll_deg=0.0, pitch_deg=0.0, yaw_deg=0.0, across_km=0.0,
+                              along_km=0.0, radial_km=0.0):
+        """The model a ground station would use: this one, with its platform data off by these errors.
+
+        Attitude errors add to the angles; ephemeris (position) errors across
+        and along track act, near nadir, as a roll or pitch of position / h
+        and are folded into them; an altitude error changes the scale by
+        (h + radial) / h.
+
+        Parameters
+        ----------
+        roll_deg, pitch_deg, yaw_deg : float
+            Attitude knowledge errors, degrees.
+        across_km, along_km, radial_km : float
+            Ephemeris knowledge errors, km.
+
+        Returns
+        -------
+        SystematicDistortion
+
+        Raises
+        ------
+        ValueError
+            Without view geometry (an angle or a position needs the altitude).
+
+        Examples
+        --------
+        >>> true = SystematicDistortion(view_altitude_km=778.0, nadir_pixel_km=0.01)
+        >>> known = true.with_knowledge_errors(roll_deg=0.01)
+        >>> round(known.roll_deg, 3)
+        0.01
+        """
+        if self.view_altitude_km is None:
+            raise ValueError("knowledge errors need view_altitude_km and nadir_pixel_km: the "
+                             "altitude turns angles and positions into pixels")
+        height = self.view_altitude_km
+        return replace(self, roll_deg=float(self.roll_deg + roll_deg + np.degrees(across_km / height)),
+                       pitch_deg=float(self.pitch_deg + pitch_deg + np.degrees(along_km / height)),
+                       yaw_deg=float(self.yaw_deg + yaw_deg),
+                       scale=float(self.scale * (height + radial_km) / height))
 
     def _yaw(self, rows_from_centre):
         return np.radians(self.yaw_deg + self.yaw_rate_deg_per_line * rows_from_centre)
@@ -282,15 +665,20 @@ class SystematicDistortion:
         angle = self._yaw(r)
         c, r = c * np.cos(angle) + r * np.sin(angle), -c * np.sin(angle) + r * np.cos(angle)
         c = c + self.skew_per_line * (r + centre_r)
-        c, r = c + self.roll_px, r + self.pitch_px
+        if self.view_altitude_km is None:
+            c, r = c + self.roll_px, r + self.pitch_px
+            return c / self.scale + centre_c, r / self.scale + centre_r
         c, r = c / self.scale, r / self.scale
-        if self.view_altitude_km is not None:
-            # ground distance (in nadir pixels) -> scan angle (in nadir pixels)
-            distance_km = c * self.nadir_pixel_km
-            gamma = distance_km / EARTH_RADIUS_KM
-            theta = np.arctan2(EARTH_RADIUS_KM * np.sin(gamma),
-                               EARTH_RADIUS_KM + self.view_altitude_km - EARTH_RADIUS_KM * np.cos(gamma))
-            c = theta * self.view_altitude_km / self.nadir_pixel_km
+        # ground (orbit-aligned grid) -> the scan angle and line that see it, on a sphere
+        roll, pitch = self.attitude_rad()
+        height = EARTH_RADIUS_KM + self.view_altitude_km
+        alpha = c * self.nadir_pixel_km / EARTH_RADIUS_KM
+        beta = np.arcsin(height * np.sin(-pitch) / (EARTH_RADIUS_KM * np.cos(alpha))) + pitch
+        look = (EARTH_RADIUS_KM * np.sin(alpha), EARTH_RADIUS_KM * np.cos(alpha) * np.sin(beta),
+                EARTH_RADIUS_KM * np.cos(alpha) * np.cos(beta) - height)
+        theta = np.arcsin(look[0] / np.sqrt(sum(v ** 2 for v in look)))
+        r = r - EARTH_RADIUS_KM * beta / self.nadir_pixel_km
+        c = (theta + roll) / self._ifov
         return c + centre_c, r + centre_r
 
     def image_to_true(self, cols, rows, shape):
@@ -298,10 +686,14 @@ class SystematicDistortion:
         centre_c, centre_r = shape[1] / 2, shape[0] / 2
         c, r = np.asarray(cols, float) - centre_c, np.asarray(rows, float) - centre_r
         if self.view_altitude_km is not None:
-            theta = c * self.nadir_pixel_km / self.view_altitude_km
-            c = ground_distance(np.degrees(theta), self.view_altitude_km) / self.nadir_pixel_km
-        c, r = c * self.scale, r * self.scale
-        c, r = c - self.roll_px, r - self.pitch_px
+            roll, pitch = self.attitude_rad()
+            point = _ground_point(self.view_altitude_km, c * self._ifov - roll, -pitch)
+            across, along = _orbit_coordinates(point)
+            c, r = across / self.nadir_pixel_km, r + along / self.nadir_pixel_km
+            c, r = c * self.scale, r * self.scale
+        else:
+            c, r = c * self.scale, r * self.scale
+            c, r = c - self.roll_px, r - self.pitch_px
         c = c - self.skew_per_line * (r + centre_r)
         # Undo the yaw: r_true enters the angle, so iterate (converges in a few steps
         # because the rotation per line is tiny).
