@@ -23,7 +23,7 @@ from math import comb
 
 import numpy as np
 
-from ._checks import as_points
+from ._checks import as_points, check_range
 
 ORDERS = (1, 2, 3)
 
@@ -151,6 +151,25 @@ class PolynomialModel:
         """
         return fit_polynomial(self.dst, self.src, self.order)
 
+    def standard_errors(self):
+        """Standard error of every coefficient, shape (2, m): see :func:`coefficient_standard_errors`."""
+        return coefficient_standard_errors(self)
+
+    def coefficient_summary(self, names=("a", "b")):
+        """Coefficients with their standard errors, as a pandas DataFrame.
+
+        Columns: ``value``, ``standard error`` and ``|value| / SE`` (how many
+        standard errors the coefficient is from zero: under about 2, the GCPs
+        cannot tell it from zero). Rows named as in :meth:`coefficient_table`.
+        """
+        import pandas as pd
+
+        errors = self.standard_errors()
+        index = list(self.coefficient_table(names))
+        values = self.coefficients.ravel()
+        return pd.DataFrame({"value": values, "standard error": errors.ravel(),
+                             "|value| / SE": np.abs(values) / errors.ravel()}, index=index)
+
     def coefficient_table(self, names=("a", "b")):
         """Coefficients as {"a0 (1)": value, ...}: term names in the lecture's order.
 
@@ -217,6 +236,59 @@ def fit_polynomial(src, dst, order):
     return PolynomialModel(order, coefficients, origin, scale, src, dst)
 
 
+def coefficient_standard_errors(model):
+    """Standard errors of a fitted polynomial's coefficients, from the least-squares covariance.
+
+    For each output coordinate separately (u, then v), with A the design
+    matrix of the fitting GCPs in the lecture's term order (x, y measured from
+    ``model.origin``), n GCPs and m coefficients, the textbook covariance of
+    the coefficients is
+
+        cov = s² (AᵀA)⁻¹,   s² = Σ residual² / (n − m),
+
+    and a coefficient's standard error is the square root of its diagonal
+    entry. A coefficient within about two standard errors of zero is not
+    supported by the GCPs. It assumes independent GCP errors of equal
+    variance; a blunder inflates s² and every standard error with it.
+
+    Parameters
+    ----------
+    model : PolynomialModel
+        As :func:`fit_polynomial` returns; its ``src`` and ``dst`` are the GCPs.
+
+    Returns
+    -------
+    ndarray, shape (2, m)
+        Row 0 the standard errors of the a_i, row 1 those of the b_i, in the
+        order of ``model.coefficients``.
+
+    Raises
+    ------
+    ValueError
+        If the model has no redundant GCP (n <= m): s² cannot be estimated.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5]], dtype=float)
+    >>> dst = src * 2 + [[0, 0], [0, 0], [0, 0], [0, 0], [1, -1]]
+    >>> coefficient_standard_errors(fit_polynomial(src, dst, 1)).round(3)
+    array([[0.283, 0.063, 0.063],
+           [0.283, 0.063, 0.063]])
+    """
+    if not isinstance(model, PolynomialModel):
+        raise ValueError(f"model must be a PolynomialModel (from fit_polynomial), got {type(model).__name__}")
+    n, m = len(model.src), model.coefficients.shape[1]
+    if n <= m:
+        raise ValueError(f"standard errors of an order-{model.order} model need more than {m} GCPs "
+                         f"(one redundant GCP at least), got {n}")
+    matrix, _, _ = _normalised_design(model.src, model.order, model.origin, model.scale)
+    residual = model(model.src) - model.dst
+    variance = np.sum(residual**2, axis=0) / (n - m)            # s² for u and for v
+    unscaled = np.diag(np.linalg.inv(matrix.T @ matrix))        # on the scaled terms
+    powers = np.array([px + py for px, py in _TERMS[:m]])
+    return np.sqrt(variance[:, np.newaxis] * unscaled[np.newaxis, :]) / model.scale**powers
+
+
 def residuals(model, src, dst):
     """Per-GCP residuals of a model: dx, dy and R_i = sqrt(dx² + dy²).
 
@@ -240,8 +312,15 @@ def residuals(model, src, dst):
 def rms_error(predicted, observed):
     """The lecture's RMS: sqrt( (1/n) Σ (x_i - x̄_i)² + (y_i - ȳ_i)² ).
 
-    Lecture, slide "Avaliação da transformação". RMS = 2 means the corrected
-    pixels are on average 2 pixels from where they belong.
+    Lecture, slide "Avaliação da transformação". The lecture reads RMS = 2 as
+    "the corrected pixels are on average 2 pixels from where they belong"; an
+    RMS computed on the fitting GCPs describes those GCPs only: elsewhere the
+    error can be larger (use check points or :func:`leave_one_out_errors`).
+
+    Raises
+    ------
+    ValueError
+        If the arrays differ in shape, are empty or hold NaN or infinity.
 
     Examples
     --------
@@ -252,6 +331,8 @@ def rms_error(predicted, observed):
     observed = as_points(observed, "observed")
     if predicted.shape != observed.shape:
         raise ValueError(f"predicted and observed must have the same shape, got {predicted.shape} and {observed.shape}")
+    if len(predicted) == 0:
+        raise ValueError("predicted and observed hold no points; the RMS needs at least one")
     return float(np.sqrt(np.mean(np.sum((predicted - observed) ** 2, axis=1))))
 
 
@@ -265,10 +346,14 @@ def mean_error(predicted, observed, order):
     Raises
     ------
     ValueError
-        If n <= m: with no redundant GCP the error cannot be estimated.
+        If the arrays differ in shape or hold NaN, or n <= m: with no
+        redundant GCP the error cannot be estimated.
     """
     predicted = as_points(predicted, "predicted")
     observed = as_points(observed, "observed")
+    if predicted.shape != observed.shape:
+        raise ValueError(f"predicted and observed must have the same shape (one row per GCP), "
+                         f"got {predicted.shape} and {observed.shape}")
     n, m = len(predicted), min_gcps(order)
     if n <= m:
         raise ValueError(f"the mean error of order {order} needs more than {m} GCPs, got {n}")
@@ -314,6 +399,9 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None):
         min_gcps = floor
     if min_gcps < floor:
         raise ValueError(f"min_gcps must be at least {floor} for order {order}, got {min_gcps}")
+    if min_gcps > len(src):
+        raise ValueError(f"min_gcps ({min_gcps}) exceeds the number of GCPs ({len(src)}); "
+                         "it must be between the order's minimum and the number of GCPs")
     if not np.isfinite(tolerance) or tolerance < 0:
         raise ValueError(f"tolerance must be a non-negative number (dst units), got {tolerance!r}")
     kept = np.ones(len(src), dtype=bool)
@@ -328,6 +416,21 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None):
         kept[np.flatnonzero(kept)[worst]] = False
         model = fit_polynomial(src[kept], dst[kept], order)
     return model, kept
+
+
+def _as_flags(flags, name):
+    """``flags`` as a bool array; only booleans or 0/1 are accepted (0.5 or NaN would read as True)."""
+    array = np.asarray(flags)
+    if array.dtype != bool:
+        try:
+            numbers = array.astype(np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must hold True/False (or 1/0) flags, got {flags!r}") from None
+        if not np.isin(numbers, (0.0, 1.0)).all():
+            raise ValueError(f"{name} must hold True/False (or 1/0) flags, got values "
+                             f"{np.unique(numbers[~np.isin(numbers, (0.0, 1.0))])[:5].tolist()}")
+        array = numbers.astype(bool)
+    return array
 
 
 def check_point_errors(src, dst, order, is_check):
@@ -353,7 +456,7 @@ def check_point_errors(src, dst, order, is_check):
     """
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
-    is_check = np.asarray(is_check, dtype=bool)
+    is_check = _as_flags(is_check, "is_check")
     if is_check.shape != (len(src),):
         raise ValueError(f"is_check must have one flag per GCP ({len(src)}), got shape {is_check.shape}")
     if not is_check.any():
@@ -372,9 +475,21 @@ def leave_one_out_errors(src, dst, order):
     ndarray, shape (n,)
         Distance between GCP i's dst and the prediction of the model fitted
         without GCP i. Needs ``min_gcps(order) + 1`` GCPs.
+
+    Raises
+    ------
+    ValueError
+        If src and dst differ in length or hold NaN, or there are fewer than
+        ``min_gcps(order) + 1`` GCPs.
     """
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
+    if len(src) != len(dst):
+        raise ValueError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} points")
+    needed = min_gcps(order) + 1
+    if len(src) < needed:
+        raise ValueError(f"leave-one-out for order {order} needs at least {needed} GCPs (the "
+                         f"minimum {needed - 1} once one is left out), got {len(src)}")
     errors = np.empty(len(src))
     for index in range(len(src)):
         others = np.arange(len(src)) != index
@@ -398,6 +513,10 @@ def hull_coverage(points, width, height):
     from scipy.spatial import ConvexHull, QhullError
 
     points = as_points(points)
+    width = check_range(width, "width", low=0, why="the image's width in pixels")
+    height = check_range(height, "height", low=0, why="the image's height in pixels")
+    if width == 0 or height == 0:
+        raise ValueError(f"width and height must be positive (pixels), got {width} and {height}")
     clipped = np.clip(points, [0, 0], [width, height])
     try:
         area = ConvexHull(clipped).volume
@@ -429,6 +548,9 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0):
     ndarray, shape of x
         Predicted standard deviation of the model at each position.
     """
+    gcp_error = check_range(gcp_error, "gcp_error", low=0, why="a standard deviation in dst units")
+    if np.shape(x) != np.shape(y):
+        raise ValueError(f"x and y must have the same shape, got {np.shape(x)} and {np.shape(y)}")
     matrix, origin, scale = _normalised_design(as_points(src, "src"), order)
     if np.linalg.matrix_rank(matrix) < matrix.shape[1]:
         raise ValueError(f"the GCPs do not determine an order-{order} polynomial (collinear or too few)")
@@ -439,7 +561,7 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0):
     return (gcp_error * np.sqrt(variance)).reshape(np.shape(x))
 
 
-def measure_shifts(reference, moving, step=64, window=64, upsample=20):
+def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=False):
     """Local misregistration of ``moving`` against ``reference`` on a grid of check points.
 
     At every check point of a regular grid, the sub-pixel shift between the
@@ -447,12 +569,24 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20):
     ``phase_cross_correlation``): an independent measure of geometric error
     that needs no GCP.
 
+    With ``taper=True`` each window is centred on its mean and multiplied
+    by a Hann window, and plain (not phase-normalised) cross-correlation is
+    used: on smooth scenes this avoids the pull towards zero shift that the
+    windows' cut edges cause.
+
     Returns
     -------
     points : ndarray, shape (k, 2)
         (col, row) of each check point.
     shifts : ndarray, shape (k, 2)
         (dcol, drow) to move ``moving`` onto ``reference`` at that point, pixels.
+
+    Raises
+    ------
+    ValueError
+        If the images differ in shape, are not 2-D or hold NaN, or step,
+        window or upsample is not a positive whole number, or the window is
+        larger than the images.
     """
     from skimage.registration import phase_cross_correlation
 
@@ -461,7 +595,19 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20):
     if reference.shape != moving.shape or reference.ndim != 2:
         raise ValueError(f"reference and moving must be 2-D images of the same shape, got "
                          f"{reference.shape} and {moving.shape}")
+    if not (np.isfinite(reference).all() and np.isfinite(moving).all()):
+        raise ValueError("reference and moving hold NaN or infinite values; crop or fill them first")
+    for name, value in (("step", step), ("window", window), ("upsample", upsample)):
+        if int(value) != value or value < 1:
+            raise ValueError(f"{name} must be a positive whole number of pixels, got {value!r}")
+    if window > min(reference.shape):
+        raise ValueError(f"window ({window} px) is larger than the images {reference.shape}; "
+                         "use a window no larger than the smaller side")
     half = window // 2
+    if taper:
+        from skimage.filters import window as hann
+
+        weights = hann("hann", (2 * half, 2 * half))
     points, shifts = [], []
     for row in range(half, reference.shape[0] - half + 1, step):
         for col in range(half, reference.shape[1] - half + 1, step):
@@ -469,10 +615,205 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20):
             b = moving[row - half:row + half, col - half:col + half]
             if a.std() == 0 or b.std() == 0:
                 continue
-            shift, _, _ = phase_cross_correlation(a, b, upsample_factor=upsample)
+            if taper:
+                a, b = (a - a.mean()) * weights, (b - b.mean()) * weights
+                shift, _, _ = phase_cross_correlation(a, b, upsample_factor=upsample,
+                                                      normalization=None)
+            else:
+                shift, _, _ = phase_cross_correlation(a, b, upsample_factor=upsample)
             points.append((col, row))
             shifts.append((shift[1], shift[0]))
-    return np.array(points, dtype=float), np.array(shifts, dtype=float)
+    return np.array(points, dtype=float).reshape(-1, 2), np.array(shifts, dtype=float).reshape(-1, 2)
+
+
+def _check_transform(transform, name):
+    """An affine.Affine-like geotransform that can be inverted."""
+    try:
+        determinant = transform.a * transform.e - transform.b * transform.d
+    except AttributeError:
+        raise ValueError(f"{name} must be an affine.Affine geotransform (pixel -> map), "
+                         f"got {type(transform).__name__}") from None
+    if not np.isfinite(determinant) or determinant == 0:
+        raise ValueError(f"{name} cannot be inverted (its pixel axes are degenerate): {transform!r}")
+    return transform
+
+
+def _check_shape(shape):
+    try:
+        rows, cols = (int(n) for n in shape)
+    except (TypeError, ValueError):
+        raise ValueError(f"shape must be (rows, cols), got {shape!r}") from None
+    if rows < 1 or cols < 1 or (rows, cols) != tuple(shape):
+        raise ValueError(f"shape must be two positive whole numbers (rows, cols), got {shape!r}")
+    return rows, cols
+
+
+@dataclass
+class GeotransformCheck:
+    """A map -> image model compared with an image's own geotransform over the scene.
+
+    Attributes
+    ----------
+    points : ndarray, shape (k, 2)
+        (col, row) of the cell centres compared.
+    differences : ndarray, shape (k, 2)
+        (dcol, drow) = model(map point) - where the geotransform puts that map
+        point, in pixels.
+    rms : float
+        RMS of the differences' lengths (the lecture's RMS, over the scene).
+    mean_offset : ndarray, shape (2,)
+        Mean (dcol, drow): the systematic part, a shift of the whole scene.
+    centred_rms : float
+        RMS once ``mean_offset`` is removed: the part a shift cannot explain.
+    max_error : float
+        Largest difference length, pixels.
+    """
+
+    points: np.ndarray = field(repr=False)
+    differences: np.ndarray = field(repr=False)
+    rms: float
+    mean_offset: np.ndarray
+    centred_rms: float
+    max_error: float
+
+
+def compare_with_geotransform(model, transform, shape, step=1):
+    """Compare a GCP model (map -> image) with the image's own geotransform, over the scene.
+
+    An image file's geotransform (pixel -> map) says where every pixel is on
+    the map; if it is independent of the GCPs it is an independent check of a
+    model fitted to them. At the centre of every ``step``-th cell, (col, row)
+    -> map (x, y) by the geotransform, then back to the image by the model:
+    the difference is where the two disagree, in pixels.
+
+    Parameters
+    ----------
+    model : callable
+        Map (x, y) -> image (col, row) on (n, 2) arrays, e.g. a
+        :class:`PolynomialModel` from :meth:`GCPSet.fit`.
+    transform : affine.Affine
+        The image's geotransform, pixel (col, row) -> map (x, y), in the
+        model's map coordinates (same CRS).
+    shape : (rows, cols)
+        The image's size.
+    step : int
+        Compare every ``step``-th row and column.
+
+    Returns
+    -------
+    GeotransformCheck
+        ``rms``, ``mean_offset`` (dcol, drow), ``centred_rms``, ``max_error``
+        and the points and differences.
+
+    Raises
+    ------
+    ValueError
+        If the transform is not an invertible affine.Affine, the shape is not
+        two positive integers, the step is not a positive integer, or the
+        model gives NaN or the wrong shape.
+
+    Examples
+    --------
+    >>> import affine
+    >>> transform = affine.Affine(20, 0, 1000, 0, -20, 5000)
+    >>> cols_rows = np.array([[0, 0], [10, 0], [0, 10], [10, 10]], dtype=float)
+    >>> map_xy = np.column_stack(transform @ cols_rows.T)
+    >>> model = fit_polynomial(map_xy, cols_rows + [0.0, 1.5], 1)   # 1.5 rows off
+    >>> check = compare_with_geotransform(model, transform, (10, 10))
+    >>> round(check.rms, 6), (check.mean_offset.round(6) + 0.0).tolist()
+    (1.5, [0.0, 1.5])
+    """
+    transform = _check_transform(transform, "transform")
+    rows, cols = _check_shape(shape)
+    if int(step) != step or step < 1:
+        raise ValueError(f"step must be a positive whole number of pixels, got {step!r}")
+    grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
+    points = np.column_stack([grid_cols.ravel(), grid_rows.ravel()])
+    map_xy = np.column_stack(transform @ (points[:, 0], points[:, 1]))
+    predicted = np.asarray(model(map_xy), dtype=np.float64)
+    if predicted.shape != points.shape or not np.isfinite(predicted).all():
+        raise ValueError(f"model must return finite (n, 2) image positions, got shape {predicted.shape}")
+    differences = predicted - points
+    lengths = np.hypot(differences[:, 0], differences[:, 1])
+    mean_offset = differences.mean(axis=0)
+    centred = differences - mean_offset
+    return GeotransformCheck(points, differences, float(np.sqrt(np.mean(lengths**2))), mean_offset,
+                             float(np.sqrt(np.mean(np.sum(centred**2, axis=1)))), float(lengths.max()))
+
+
+def offsets_against_reference(image, transform, reference, reference_transform, step=64,
+                              window=96):
+    """Where an image's content sits relative to its geotransform, measured on a finer reference.
+
+    The reference (e.g. the 2.5 m HRC) is averaged over blocks of the image's
+    pixel size (e.g. 8 × 8 for 20 m), sampled (bilinear) at the image's cell
+    centres through both geotransforms, and compared with the image window by
+    window by cross-correlation (:func:`measure_shifts` with ``taper=True``). No GCP is used: it is
+    an independent measure of how far the two files' georeferencing disagree.
+
+    Parameters
+    ----------
+    image : (rows, cols) array_like
+        One band of the coarser image.
+    transform : affine.Affine
+        Its geotransform, north-up.
+    reference : (rows, cols) array_like
+        One band of the finer reference, in the same CRS, with a spectral
+        response close to ``image``'s (a pan band against a red band, say).
+    reference_transform : affine.Affine
+        Its geotransform, north-up, with a pixel size that divides the image's.
+    step, window : int
+        Spacing and size of the correlation windows, in image pixels.
+
+    Returns
+    -------
+    points : ndarray, shape (k, 2)
+        (col, row) of each window's centre in the image.
+    offsets : ndarray, shape (k, 2)
+        (dcol, drow): where a feature is in the image minus where the image's
+        geotransform puts the reference's same feature, in image pixels (the
+        same sign as GCP image positions minus the geotransform's prediction).
+
+    Raises
+    ------
+    ValueError
+        If the images are not 2-D, the transforms are not north-up, the pixel
+        sizes are not in a whole ratio, or the images barely overlap.
+    """
+    from scipy.ndimage import map_coordinates
+
+    image = np.asarray(image, dtype=np.float64)
+    reference = np.asarray(reference, dtype=np.float64)
+    if image.ndim != 2 or reference.ndim != 2:
+        raise ValueError(f"image and reference must be single bands (2-D), got shapes "
+                         f"{image.shape} and {reference.shape}")
+    for name, t in (("transform", transform), ("reference_transform", reference_transform)):
+        _check_transform(t, name)
+        if t.b != 0 or t.d != 0 or t.a <= 0 or t.e >= 0:
+            raise ValueError(f"{name} must be north-up (no rotation terms), got {t!r}")
+    ratio = transform.a / reference_transform.a
+    factor = int(round(ratio))
+    if factor < 1 or abs(ratio - factor) > 1e-6 or abs(-transform.e / -reference_transform.e - factor) > 1e-6:
+        raise ValueError(f"the image's pixel ({transform.a}, {-transform.e}) must be a whole multiple "
+                         f"of the reference's ({reference_transform.a}, {-reference_transform.e})")
+    rows, cols = (n // factor * factor for n in reference.shape)
+    blocks = reference[:rows, :cols].reshape(rows // factor, factor, cols // factor, factor).mean(axis=(1, 3))
+    block_transform = reference_transform @ reference_transform.scale(factor)
+    grid_rows, grid_cols = np.mgrid[0:image.shape[0], 0:image.shape[1]] + 0.5
+    x, y = transform @ (grid_cols, grid_rows)
+    block_cols, block_rows = ~block_transform @ (x, y)
+    inside = ((block_cols >= 0.5) & (block_rows >= 0.5) & (block_cols <= blocks.shape[1] - 0.5)
+              & (block_rows <= blocks.shape[0] - 0.5))
+    if not inside.any():
+        raise ValueError("the image and the reference do not overlap")
+    used_rows, used_cols = np.flatnonzero(inside.any(axis=1)), np.flatnonzero(inside.any(axis=0))
+    box = np.s_[used_rows[0]:used_rows[-1] + 1, used_cols[0]:used_cols[-1] + 1]
+    if not inside[box].all() or min(inside[box].shape) < window:
+        raise ValueError(f"the overlap {inside[box].shape} must be a full rectangle of at least "
+                         f"{window} × {window} image pixels")
+    sampled = map_coordinates(blocks, [block_rows[box] - 0.5, block_cols[box] - 0.5], order=1)
+    points, shifts = measure_shifts(sampled, image[box], step=step, window=window, taper=True)
+    return points + [used_cols[0], used_rows[0]], -shifts
 
 
 # --------------------------------------------------------------------------
@@ -512,7 +853,7 @@ class GCPSet:
         n = len(self.map_xy)
         if len(self.image_xy) != n:
             raise ValueError(f"map_xy and image_xy must hold the same GCPs, got {n} and {len(self.image_xy)}")
-        self.enabled = np.ones(n, bool) if self.enabled is None else np.asarray(self.enabled, dtype=bool)
+        self.enabled = np.ones(n, bool) if self.enabled is None else _as_flags(self.enabled, "enabled")
         if self.enabled.shape != (n,):
             raise ValueError(f"enabled must have one flag per GCP ({n}), got shape {self.enabled.shape}")
         self.ids = [str(i + 1) for i in range(n)] if self.ids is None else [str(i) for i in self.ids]

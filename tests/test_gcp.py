@@ -149,3 +149,160 @@ def test_coefficients_in_the_lecture_order():
     table = model.coefficient_table()
     assert list(table)[:6] == ["a0 (1)", "a1 (x)", "a2 (y)", "a3 (xy)", "a4 (x²)", "a5 (y²)"]
     assert table["a3 (xy)"] == pytest.approx(4) and table["b5 (y²)"] == pytest.approx(7)
+
+
+# -- Coefficient standard errors, checks against a geotransform, silent failures ----------
+
+
+def test_standard_errors_follow_the_textbook_formula():
+    # s² (AᵀA)⁻¹ written out on the lecture's term order, x and y measured from the GCPs' mean
+    rng = np.random.default_rng(11)
+    src = rng.uniform(-3000, 3000, (15, 2)) + [774_000, 7_366_000]
+    dst = np.column_stack([200 + 0.05 * (src[:, 0] - 774_000), 190 - 0.05 * (src[:, 1] - 7_366_000)])
+    dst = dst + rng.normal(0, 0.5, dst.shape)
+    for order in (1, 2, 3):
+        model = gcp.fit_polynomial(src, dst, order)
+        a = gcp.design_matrix(src - src.mean(axis=0), order)
+        n, m = a.shape
+        s2 = np.sum((a @ model.coefficients.T - dst) ** 2, axis=0) / (n - m)
+        expected = np.sqrt(np.outer(s2, np.diag(np.linalg.inv(a.T @ a))))
+        np.testing.assert_allclose(model.standard_errors(), expected, rtol=1e-6)
+        summary = model.coefficient_summary()
+        assert list(summary.index) == list(model.coefficient_table())
+        np.testing.assert_allclose(summary["standard error"], expected.ravel(), rtol=1e-6)
+
+
+def test_standard_errors_match_the_spread_of_refitted_coefficients():
+    # known noise σ: the coefficients' spread over many noisy GCP sets is σ sqrt(diag((AᵀA)⁻¹))
+    rng = np.random.default_rng(3)
+    src = rng.uniform(0, 1000, (12, 2))
+    truth = np.column_stack([5 + 0.8 * src[:, 0] + 0.1 * src[:, 1], 2 - 0.2 * src[:, 0] + src[:, 1]])
+    sigma = 0.5
+    a = gcp.design_matrix(src - src.mean(axis=0), 1)
+    theory = sigma * np.sqrt(np.diag(np.linalg.inv(a.T @ a)))
+    fits = [gcp.fit_polynomial(src, truth + rng.normal(0, sigma, truth.shape), 1) for _ in range(600)]
+    spread = np.std([f.coefficients for f in fits], axis=0)
+    estimated = np.mean([f.standard_errors() for f in fits], axis=0)
+    np.testing.assert_allclose(spread, np.vstack([theory, theory]), rtol=0.12)
+    np.testing.assert_allclose(estimated, np.vstack([theory, theory]), rtol=0.12)
+
+
+def test_standard_errors_need_a_redundant_gcp():
+    image_xy, map_xy = utm_gcps(3, seed=1)
+    with pytest.raises(ValueError, match="need more than 3 GCPs"):
+        gcp.fit_polynomial(map_xy, image_xy, 1).standard_errors()
+
+
+def test_geotransform_check_measures_a_known_offset():
+    transform = affine.Affine(20, 0, 770_000, 0, -20, 7_370_000)
+    rng = np.random.default_rng(4)
+    image_xy = rng.uniform(0, 300, (10, 2))
+    map_xy = np.column_stack(transform @ image_xy.T)
+    exact = gcp.fit_polynomial(map_xy, image_xy, 1)
+    check = gcp.compare_with_geotransform(exact, transform, (300, 320), step=7)
+    assert check.rms < 1e-6 and check.max_error < 1e-6
+    shifted = gcp.fit_polynomial(map_xy, image_xy + [0.3, -1.2], 1)
+    check = gcp.compare_with_geotransform(shifted, transform, (300, 320))
+    np.testing.assert_allclose(check.mean_offset, [0.3, -1.2], atol=1e-6)
+    assert check.rms == pytest.approx(np.hypot(0.3, 1.2)) and check.centred_rms < 1e-6
+    assert check.points.shape == (300 * 320, 2)
+    # a scale error: zero at the centre, growing to the corners; the mean offset misses it
+    scaled = gcp.fit_polynomial(map_xy, (image_xy - 150) * 1.01 + 150, 1)
+    check = gcp.compare_with_geotransform(scaled, transform, (300, 300))
+    assert np.abs(check.mean_offset).max() < 1e-6
+    assert check.max_error == pytest.approx(0.01 * np.hypot(149.5, 149.5), rel=1e-6)
+
+
+def test_geotransform_check_rejects_bad_input():
+    model = gcp.fit_polynomial(*utm_gcps(6, seed=2)[::-1], 1)
+    transform = affine.Affine(20, 0, 500_000, 0, -20, 7_400_000)
+    with pytest.raises(ValueError, match="affine.Affine"):
+        gcp.compare_with_geotransform(model, (20, 0, 0, 0, -20, 0), (10, 10))
+    with pytest.raises(ValueError, match="cannot be inverted"):
+        gcp.compare_with_geotransform(model, affine.Affine(0, 0, 0, 0, 0, 0), (10, 10))
+    with pytest.raises(ValueError, match="shape must be"):
+        gcp.compare_with_geotransform(model, transform, (10, 0))
+    with pytest.raises(ValueError, match="step must be"):
+        gcp.compare_with_geotransform(model, transform, (10, 10), step=0)
+
+
+def _textured(shape, seed):
+    from scipy.ndimage import gaussian_filter
+
+    return gaussian_filter(np.random.default_rng(seed).normal(0, 1, shape), 12) * 400 + 100
+
+
+def test_offsets_against_reference_recover_a_shifted_geotransform():
+    # the coarse image is the fine one averaged 8 × 8; its declared geotransform is 10 m east and
+    # 30 m north of the truth, so its content sits (+0.5, -1.5) pixels from where it says
+    fine = _textured((1600, 1600), seed=8)
+    fine_transform = affine.Affine(2.5, 0, 770_000, 0, -2.5, 7_370_000)
+    coarse = fine.reshape(200, 8, 200, 8).mean(axis=(1, 3))
+    declared = affine.Affine(20, 0, 770_000 + 10, 0, -20, 7_370_000 + 30)
+    points, offsets = gcp.offsets_against_reference(coarse, declared, fine, fine_transform,
+                                                    step=40, window=64)
+    assert len(points) >= 9
+    np.testing.assert_allclose(np.median(offsets, axis=0), [0.5, -1.5], atol=0.1)
+    declared = affine.Affine(20, 0, 770_000 - 5, 0, -20, 7_370_000 - 13)   # (-0.25, +0.65) px
+    _, offsets = gcp.offsets_against_reference(coarse, declared, fine, fine_transform,
+                                               step=40, window=64)
+    np.testing.assert_allclose(np.median(offsets, axis=0), [-0.25, 0.65], atol=0.15)
+    _, none = gcp.offsets_against_reference(coarse, fine_transform @ fine_transform.scale(8),
+                                            fine, fine_transform, step=40, window=64)
+    np.testing.assert_allclose(np.median(none, axis=0), [0, 0], atol=0.1)
+    with pytest.raises(ValueError, match="whole multiple"):
+        gcp.offsets_against_reference(coarse, affine.Affine(21, 0, 770_000, 0, -21, 7_370_000),
+                                      fine, fine_transform)
+    with pytest.raises(ValueError, match="north-up"):
+        gcp.offsets_against_reference(coarse, affine.Affine(20, 1, 770_000, 0, -20, 7_370_000),
+                                      fine, fine_transform)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: gcp.rms_error(np.zeros((0, 2)), np.zeros((0, 2))), "no points"),
+    (lambda: gcp.mean_error(np.ones((5, 2)), np.zeros((1, 2)), 1), "same shape"),
+    (lambda: gcp.mean_error(np.ones((5, 2)), np.full((5, 2), np.nan), 1), "NaN"),
+    (lambda: gcp.refine_gcps(*utm_gcps(8, seed=1), 1, 5.0, min_gcps=9), "exceeds the number"),
+    (lambda: gcp.check_point_errors(*utm_gcps(8, seed=1), 1, [0, 0.5, 0, 0, 0, 1, 0, 0]),
+     "True/False"),
+    (lambda: gcp.check_point_errors(*utm_gcps(8, seed=1), 1, [0, np.nan, 0, 0, 0, 1, 0, 0]),
+     "True/False"),
+    (lambda: gcp.leave_one_out_errors(np.random.default_rng(0).random((6, 2)),
+                                      np.random.default_rng(1).random((7, 2)), 1), "same GCPs"),
+    (lambda: gcp.leave_one_out_errors(*utm_gcps(6, seed=1), 2), "needs at least 7 GCPs"),
+    (lambda: gcp.hull_coverage(np.random.default_rng(0).random((5, 2)), 0, 100), "positive"),
+    (lambda: gcp.hull_coverage(np.random.default_rng(0).random((5, 2)), np.nan, 100), "width"),
+    (lambda: gcp.predicted_error_map(utm_gcps(8, seed=1)[1], 1, np.zeros(3), np.zeros(3),
+                                     gcp_error=-1), "gcp_error"),
+    (lambda: gcp.predicted_error_map(utm_gcps(8, seed=1)[1], 1, np.zeros(3), np.zeros(4)),
+     "same shape"),
+    (lambda: gcp.measure_shifts(np.ones((50, 50)), np.ones((50, 50)), window=64), "larger than"),
+    (lambda: gcp.measure_shifts(np.full((80, 80), np.nan), np.ones((80, 80))), "NaN"),
+    (lambda: gcp.measure_shifts(np.ones((80, 80)), np.ones((80, 80)), step=0), "step"),
+    (lambda: gcp.GCPSet(np.zeros((3, 2)), np.zeros((3, 2)), enabled=[1, np.nan, 0]), "True/False"),
+])
+def test_silent_wrong_answers_are_value_errors(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()
+
+
+def test_residual_arrows_point_down_the_image_for_positive_dy():
+    # rows grow downwards: a GCP whose model position is 5 rows lower must draw downwards on screen
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from rsgeo.plot import draw_residual_arrows, figure_problems, label_points, show_image
+
+    figure, ax = plt.subplots()
+    show_image(ax, np.zeros((100, 100)), title="arrows")
+    arrows = draw_residual_arrows(ax, [[50.0, 50.0]], [0.0], [5.0], exaggeration=4)
+    figure.canvas.draw()
+    outline = arrows.get_transform().transform(arrows.get_paths()[0].vertices)  # display units
+    tail, tip = ax.transData.transform([[50.0, 50.0], [50.0, 50.0 + 5.0 * 4]])
+    assert tip[1] < tail[1]                       # display y grows upwards: down the image is less
+    assert outline[:, 1].min() == pytest.approx(tip[1] - tail[1], rel=0.02)   # drawn to the tip
+    assert outline[:, 1].max() < 5                # nothing drawn upwards from the GCP
+    labels = label_points(ax, [[10.0, 10.0]], ["G01"])
+    assert labels[0].get_path_effects()           # outlined: readable on dark and bright pixels
+    assert figure_problems(figure) == []
+    plt.close(figure)
