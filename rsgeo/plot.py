@@ -93,7 +93,8 @@ def draw_neighbour_weights(ax, position, method):
             ax.scatter(*centre, s=2000 * abs(weight), color="tab:red" if weight < 0 else "tab:blue", alpha=0.6)
             ax.annotate(f"{weight:.2f}", centre, ha="center", va="center", fontsize=8)
     ax.scatter(col, row, marker="x", color="black", s=80)
-    ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel="column", ylabel="row",
+    ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel="column (px)",
+           ylabel="row (px)",
            title=f"{method}: position ({col:.2f}, {row:.2f})")
     ax.grid(True)
     ax.set_aspect("equal")
@@ -103,29 +104,53 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
     """One frame of the regression stretch: mosaic, histograms, scatter with the line (chapter 5).
 
     ``t`` goes from 0 (no correction) to 1 (the fitted gain and offset):
-    gain(t) = 1 + t·(gain − 1), offset(t) = t·offset.
+    gain(t) = 1 + t·(gain − 1), offset(t) = t·offset. The mosaic's title gives
+    :func:`rsgeo.radiometry.seam_metrics` of the stretched A against B over the
+    whole overlap: the brightness step (difference of the means) and the
+    contrast mismatch (difference of the standard deviations), in DN, the
+    measures chapter 5's text uses.
+
+    Parameters
+    ----------
+    axes : sequence of three matplotlib Axes
+    x_image, y_image : ndarray
+        A (X, integer dtype, the image stretched) and B (Y), same shape.
+    gain, offset : float
+        The correction reached at t = 1.
+    t : float
+        Position along the correction, 0 to 1.
+    title_extra : str
+        Appended to the scatter's title.
+
+    Returns
+    -------
+    dict
+        The seam metrics shown in the title.
     """
-    from .radiometry import apply_gain_offset, concatenate_halves, seam_step
+    from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 
     gain_t, offset_t = 1 + t * (gain - 1), t * offset
     corrected = apply_gain_offset(x_image, gain_t, offset_t)
     mosaic, split = concatenate_halves(corrected, y_image)
+    metrics = seam_metrics(corrected, y_image)
     for ax in axes:
         ax.clear()
     axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
     axes[0].axvline(split - 0.5, color="tab:red", linewidth=0.8)
-    axes[0].set(title=f"t = {t:.1f}: seam step {seam_step(mosaic, split):.1f} DN", xlabel="column (px)",
-                ylabel="row (px)")
+    axes[0].set(title=f"t = {t:.1f}: mean Δ {metrics['mean_difference']:+.1f} DN, "
+                      f"spread Δ {metrics['std_difference']:+.1f} DN",
+                xlabel="column (px)", ylabel="row (px)")
     bins = np.arange(257)
-    axes[1].hist(corrected.ravel(), bins, alpha=0.6, label="A corrected")
+    axes[1].hist(corrected.ravel(), bins, alpha=0.6, label="A stretched")
     axes[1].hist(np.asarray(y_image).ravel(), bins, alpha=0.6, label="B")
-    axes[1].set(title="histograms", xlabel="DN", ylabel="pixels")
+    axes[1].set(title="histograms (1 DN bins)", xlabel="DN", ylabel="count (pixels)")
     axes[1].legend()
     axes[2].scatter(np.ravel(x_image)[::5], np.ravel(y_image)[::5], s=2, alpha=0.3)
     line = np.array([0, 255])
     axes[2].plot(line, gain_t * line + offset_t, color="tab:red")
     axes[2].set(title=f"Y = {gain_t:.3f} X + {offset_t:.2f}{title_extra}", xlabel="A = X (DN)",
                 ylabel="B = Y (DN)", xlim=(0, 255), ylim=(0, 255))
+    return metrics
 
 
 def animation_html(animation):
@@ -260,3 +285,84 @@ def audit_rendered_figures():
 
     print_figure._rsgeo_audit = True
     FigureCanvasBase.print_figure = print_figure
+
+
+# -- GCP figures (chapters 2 and 3) ------------------------------------------
+
+
+def label_points(ax, xy, names, color="white", outline="black", fontsize=8):
+    """Write a name beside each point, light text with a dark outline: readable on any image.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    xy : (n, 2) array_like
+        Positions in the axes' data coordinates.
+    names : sequence of str
+        One name per point.
+    color, outline : colour
+        Text colour and the colour of its outline (a stroke drawn under it).
+    fontsize : float
+
+    Returns
+    -------
+    list of matplotlib.text.Annotation
+
+    Raises
+    ------
+    ValueError
+        If there is not one name per point.
+    """
+    from matplotlib import patheffects
+
+    xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+    names = list(names)
+    if len(names) != len(xy):
+        raise ValueError(f"label_points needs one name per point, got {len(names)} names for {len(xy)} points")
+    stroke = [patheffects.withStroke(linewidth=2.5, foreground=outline)]
+    return [ax.annotate(str(name), (x, y), xytext=(4, 4), textcoords="offset points", color=color,
+                        fontsize=fontsize, path_effects=stroke) for name, (x, y) in zip(names, xy)]
+
+
+def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, color="yellow"):
+    """GCP residuals as arrows on an image axis whose rows grow downwards.
+
+    Each arrow starts at the GCP's measured (col, row) and points to where the
+    model puts it, (col + dx, row + dy), drawn ``exaggeration`` times longer.
+    A key arrow of ``key_px`` pixels (before exaggeration) gives the scale,
+    in the panel's lower-left corner. Used for any (dcol, drow) field on an image: residuals,
+    or a model's difference from a geotransform.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        Showing the image in (col, row) coordinates (e.g. from :func:`show_image`).
+    image_xy : (n, 2) array_like
+        Measured GCP positions (col, row).
+    dx, dy : (n,) array_like
+        Residuals model - GCP, in pixels (rows down), as ``rsgeo.gcp.residuals`` returns.
+    exaggeration : float
+        How many times longer than the residual each arrow is drawn.
+    key_px : float
+        Length of the key arrow, in residual pixels.
+
+    Returns
+    -------
+    matplotlib.quiver.Quiver
+    """
+    image_xy = np.asarray(image_xy, dtype=float).reshape(-1, 2)
+    dx, dy = np.asarray(dx, dtype=float), np.asarray(dy, dtype=float)
+    if dx.shape != (len(image_xy),) or dy.shape != (len(image_xy),):
+        raise ValueError(f"dx and dy need one value per GCP ({len(image_xy)}), got shapes {dx.shape}, {dy.shape}")
+    if not exaggeration > 0:
+        raise ValueError(f"exaggeration must be a positive number, got {exaggeration!r}")
+    # angles="xy" and scale_units="xy" draw in data coordinates: +dy goes down the image, as rows do
+    arrows = ax.quiver(image_xy[:, 0], image_xy[:, 1], dx, dy, color=color, angles="xy",
+                       scale_units="xy", scale=1 / exaggeration, width=0.005, edgecolor="black",
+                       linewidth=0.5)
+    from matplotlib import patheffects
+
+    key = ax.quiverkey(arrows, 0.1, 0.04, key_px, f"key: {key_px:g} px, drawn ×{exaggeration:g}",
+                       labelpos="E", coordinates="axes", color=color, labelcolor="white")
+    key.text.set_path_effects([patheffects.withStroke(linewidth=2.5, foreground="black")])
+    return arrows

@@ -20,8 +20,11 @@ def _pyplot():
 def distortion_explorer(shape=(300, 300)):
     """Sliders for latitude, roll, pitch, yaw (constant and varying) and scan angle.
 
-    The left panel redraws the true grid where a distorted image records it;
-    the right one the pixel size at the chosen scan angle for a MODIS-like sensor.
+    The left panel redraws the true grid where a distorted image records it (a
+    narrow-field scene: roll and pitch, in pixels of angle, are uniform shifts;
+    the Earth-rotation skew of a descending pass puts each line's ground west of
+    the line before); the right one the pixel size at the chosen scan angle for
+    a MODIS-like sensor.
     """
     import ipywidgets as widgets
 
@@ -46,7 +49,7 @@ def distortion_explorer(shape=(300, 300)):
                   color="lightgray")
         draw_grid(left, distortion.distorted_grid(model, shape, 50))
         left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel="column (pixels)",
-                 ylabel="row (pixels)", title=f"grid as recorded (skew {skew_km:.1f} km per 185 km)")
+                 ylabel="row (pixels)", title=f"grid as recorded (last line {skew_km:.1f} km west per 185 km)")
         angles = np.linspace(0, 60, 121)
         along, across = distortion.pixel_size(angles, 705.0)
         right.plot(angles, along, label="along track")
@@ -83,7 +86,7 @@ def gcp_explorer(gcps, order=1, index=0):
         colours = ["tab:red" if i == which else "tab:blue" for i in range(len(gcps))]
         ax.bar(gcps.ids, distance, color=colours)
         ax.axhline(rms, color="black", linestyle="--", label=f"RMS = {rms:.2f} px")
-        ax.set(xlabel="GCP", ylabel="residual R_i (pixels)", title=f"degree {degree}: residuals after moving "
+        ax.set(xlabel="GCP (id)", ylabel="residual R_i (pixels)", title=f"degree {degree}: residuals after moving "
                f"{gcps.ids[which]} by ({dcol:+.1f}, {drow:+.1f}) px")
         ax.legend()
         plt.show()
@@ -92,30 +95,65 @@ def gcp_explorer(gcps, order=1, index=0):
     return widgets.VBox([widgets.HBox([which, degree]), widgets.HBox([dcol, drow]), output])
 
 
-def regression_stretch(x_image, y_image, gain, offset, sizes=(1, 3, 5, 7)):
-    """Animate the paper's correction: from no correction (t = 0) to the fitted gain and offset (t = 1).
+def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("ols", "rma")):
+    """Animate the paper's correction: from no correction (t = 0) to a fitted gain and offset (t = 1).
 
-    A Play button and a slider move t; the mosaic's seam fades, X's histogram
-    slides onto Y's and the line settles in the scatter. A second control
-    changes the mean-filter size and shows r.
+    A Play button and a slider move t; the *filter* menu chooses the mean
+    filter and the *method* menu the regression (``"ols"``, the paper's, or
+    ``"rma"``, the reduced major axis) whose gain and offset are reached at
+    t = 1. The mosaic's title gives the brightness step and the contrast
+    mismatch over the whole overlap (:func:`rsgeo.radiometry.seam_metrics`);
+    the scatter's title, the line at t and the chosen fit's r.
+
+    Parameters
+    ----------
+    x_image, y_image : ndarray
+        A (X, integer dtype, the image corrected) and B (Y), same shape.
+    sizes : sequence of int
+        Filter sizes offered (1: no filter).
+    size : int
+        The filter shown first (3, the paper's).
+    methods : sequence of str
+        Regression methods offered (see :func:`rsgeo.radiometry.fit_gain_offset`).
+
+    Returns
+    -------
+    ipywidgets.VBox
+
+    Raises
+    ------
+    ValueError
+        If ``size`` is not one of ``sizes`` or a method is unknown.
     """
     import ipywidgets as widgets
 
+    from ._checks import check_choice
+
+    if size not in sizes:
+        raise ValueError(f"size {size!r} must be one of the offered sizes {tuple(sizes)}")
+    for name in methods:
+        check_choice(name, "method", radiometry.FIT_METHODS)
     plt = _pyplot()
     step = widgets.IntSlider(value=0, min=0, max=10, description="t × 10")
     play = widgets.Play(value=0, min=0, max=10, step=1, interval=400, description="play")
     widgets.jslink((play, "value"), (step, "value"))
-    size = widgets.Dropdown(options=list(sizes), value=sizes[0], description="filter")
+    size = widgets.Dropdown(options=list(sizes), value=size, description="filter")
+    method = widgets.Dropdown(options=list(methods), value=methods[0], description="method")
+    fits = {}
 
-    def draw(step, size):
-        fit = radiometry.fit_gain_offset(x_image, y_image, smooth=size if size > 1 else None)
+    def draw(step, size, method):
+        if (size, method) not in fits:
+            fits[size, method] = radiometry.fit_gain_offset(
+                x_image, y_image, smooth=size if size > 1 else None, method=method)
+        fit = fits[size, method]
         figure, axes = plt.subplots(1, 3, figsize=(13, 4))
-        draw_stretch_frame(axes, x_image, y_image, gain, offset, step / 10,
-                           title_extra=f"   (filter {size}×{size}: r = {fit.r:.3f})")
+        draw_stretch_frame(axes, x_image, y_image, fit.gain, fit.offset, step / 10,
+                           title_extra=f"\n({method}, filter {size}×{size}: r = {fit.r:.3f})")
+        figure.tight_layout()
         plt.show()
 
-    output = widgets.interactive_output(draw, {"step": step, "size": size})
-    return widgets.VBox([widgets.HBox([play, step, size]), output])
+    output = widgets.interactive_output(draw, {"step": step, "size": size, "method": method})
+    return widgets.VBox([widgets.HBox([play, step]), widgets.HBox([size, method]), output])
 
 
 def ga_evolution(reference, adjustment, truth, seed=0):
