@@ -70,3 +70,11 @@ def test_jupyter_lab_as_the_readme_says_serves_the_chapters(tmp_path):
             server.wait(timeout=20)
         except subprocess.TimeoutExpired:
             server.kill()
+
+
+def test_the_repository_holds_no_symbolic_link():
+    # a fresh checkout on any system gets real files; the book's build places copies where needed
+    listing = subprocess.run(["git", "ls-files", "-s"], cwd=ROOT, capture_output=True, text=True,
+                             check=True).stdout
+    links = [line.split("\t")[1] for line in listing.splitlines() if line.startswith("120000")]
+    assert not links, links

@@ -1,10 +1,22 @@
-"""A Sphinx extension for the course's HTML book: each page's scripts, once each.
+"""A Sphinx extension for the course's HTML book: each page's scripts, once each, and the widget
+manager's icon fonts where it looks for them.
 
 Jupyter Book 1 always loads sphinx-thebe, whose configuration script is registered at every
 ``env-before-read-docs``, so some pages declared ``const THEBE_JS_URL`` twice and the browser
 threw "Identifier 'THEBE_JS_URL' has already been declared". Keeping the first copy of every
 script fixes that without touching anything else.
+
+The widget manager's two bundles (book/_vendor/widgets) look for their icon fonts next to the page
+that loads them, under ``@jupyter-widgets/`` and ``@jupyter-widgets/html-manager/dist/``. After
+the build, the fonts (book/_vendor/widget-fonts) are copied there for every folder that holds
+pages, so the repository keeps one copy of each font and no symbolic link.
 """
+
+import shutil
+from pathlib import Path
+
+FONTS = Path("book") / "_vendor" / "widget-fonts"
+FONT_FOLDERS = ("@jupyter-widgets", "@jupyter-widgets/html-manager/dist")
 
 
 def keep_scripts_once(app, pagename, templatename, context, doctree):
@@ -19,6 +31,22 @@ def keep_scripts_once(app, pagename, templatename, context, doctree):
     context["script_files"] = scripts
 
 
+def place_widget_fonts(app, exception):
+    if exception is not None or app.builder.format != "html":
+        return
+    fonts = sorted((Path(app.srcdir) / FONTS).glob("*.woff*"))
+    if not fonts:
+        raise FileNotFoundError(f"no widget fonts in {Path(app.srcdir) / FONTS}")
+    page_folders = {Path(name).parent for name in app.env.found_docs}
+    for folder in page_folders:
+        for font_folder in FONT_FOLDERS:
+            target = Path(app.outdir) / folder / font_folder
+            target.mkdir(parents=True, exist_ok=True)
+            for font in fonts:
+                shutil.copyfile(font, target / font.name)
+
+
 def setup(app):
     app.connect("html-page-context", keep_scripts_once, priority=900)
+    app.connect("build-finished", place_widget_fonts)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
