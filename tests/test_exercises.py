@@ -1,43 +1,544 @@
-"""The exercise checks: right answers pass, wrong ones get a hint, placeholders stop the notebook."""
+"""The exercise checks teach: every check is driven through the right answer, each mistake it
+recognises (asserting that mistake's hint), the placeholder, and each wrong form of answer; no
+verdict gives the expected value away.
 
+Wrong answers are computed here the way a student would make the mistake (cos of degrees, a flat
+Earth, RMS over 2n ...), independently of the check's own code, with the exercises' own settings.
+"""
+
+import functools
+import math
+import re
+from pathlib import Path
+
+import nbformat
 import numpy as np
 import pytest
 
-from rsgeo import exercises, synthetic
+from rsgeo import distortion, exercises, gcp, matching, radiometry, resample, synthetic
+
+ROOT = Path(__file__).resolve().parent.parent
+R, RE, OMEGA, GM = 6371.0, 6378.137, 7.292115e-5, 398600.4418
 
 
-def test_placeholder_raises_exercise_not_solved():
-    with pytest.raises(exercises.ExerciseNotSolved, match="`skew_km` is still `...`"):
-        exercises.check_skew(..., 0.0, 185.0, 705.0, 98.2)
+# -- The exercises' settings and the students' answers, right and wrong -------------------------
+
+def skew(lat=-23.5, inc=98.5, h=778.0, frame=113.0, lat_rad=True, inc_rad=True, zeta="cos",
+         cos_phi=True, divide=True, speed_radius=R):
+    phi = np.radians(lat) if lat_rad else lat
+    i = np.radians(inc) if inc_rad else inc
+    with np.errstate(invalid="ignore"):
+        z = np.arcsin(abs(np.cos(i)) / (np.cos(phi) if divide else 1.0))
+    t = frame / (speed_radius * np.sqrt(GM / (R + h) ** 3))
+    factor = {"cos": np.cos(z), "sin": np.sin(z), "none": 1.0}[zeta]
+    return OMEGA * RE * (np.cos(phi) if cos_phi else 1.0) * t * factor
 
 
-def test_wrong_answers_get_a_verdict_with_a_hint():
-    verdict = exercises.check_swath(2014.0, 55.0, 705.0)          # the flat-Earth answer
-    assert not verdict and "should be about 2330" in verdict.message and "2·R·γ" in verdict.hint
-    assert "Not yet" in verdict._repr_html_()
+def growth(curved=True, divide_by="z", ratio=False):
+    theta, h = np.radians(7.5), 705.0
+    if not curved:
+        return 100 * (1 / np.cos(theta) ** 2 - 1)
+    z = np.arcsin((R + h) / R * np.sin(theta))
+    slant = R * np.sin(z - theta) / np.sin(theta)
+    cos = {"z": np.cos(z), "theta": np.cos(theta), "nothing": 1.0}[divide_by]
+    size = (slant / h) / cos
+    return 100 * size if ratio else 100 * (size - 1)
 
 
-def test_rms_hint_names_the_common_mistake():
-    predicted, observed = np.array([[3.0, 4.0], [0.0, 0.0]]), np.zeros((2, 2))
-    verdict = exercises.check_rms(np.sqrt(25 / 4), predicted, observed)   # divided by 2n
-    assert not verdict and "divide by n" in verdict.hint
-    assert exercises.check_rms(np.sqrt(25 / 2), predicted, observed)
+def swath(kind="arc"):
+    theta, h = np.radians(55.0), 705.0
+    z = np.arcsin((R + h) / R * np.sin(theta))
+    gamma = z - theta
+    return {"arc": 2 * R * gamma, "flat": 2 * h * np.tan(theta), "half": R * gamma,
+            "chord": 2 * R * np.sin(gamma), "degrees": 2 * R * np.degrees(gamma),
+            "orbit": 2 * (R + h) * gamma}[kind]
 
 
-def test_design_matrix_names_the_wrong_column():
-    points = np.array([[1.0, 2.0], [3.0, 5.0], [4.0, 1.0]])
-    wrong = np.column_stack([np.ones(3), points[:, 1], points[:, 0]])
-    verdict = exercises.check_design_matrix(wrong, points)
-    assert not verdict and "x, y" in verdict.message
-
-
-def test_blunder_check_knows_the_planted_blunder():
+@functools.cache
+def georeferencing():
     pair = synthetic.distorted_pair(seed=2)
-    assert exercises.check_blunder(pair.gcps.ids[pair.blunder], pair.gcps, order=2)
-    other = pair.gcps.ids[(pair.blunder + 1) % len(pair.gcps)]
-    assert not exercises.check_blunder(other, pair.gcps, order=2)
+    gcps = pair.gcps
+    points = gcps.map_xy[:5] - gcps.map_xy[:5].mean(axis=0)
+    predicted = gcp.fit_polynomial(gcps.map_xy, gcps.image_xy, order=1)(gcps.map_xy)
+    table = gcps.table(gcps.fit(order=2))
+    blunder = str(table["residual"].idxmax())
+    keep = np.array(gcps.ids) != blunder
+    good = gcp.GCPSet(gcps.map_xy[keep], gcps.image_xy[keep])
+    is_check = np.arange(len(good)) % 3 == 0
+    return gcps, points, predicted, table, good, is_check
 
 
-def test_method_for_classes():
-    assert exercises.check_method_for_classes("nearest")
-    assert not exercises.check_method_for_classes("cubic")
+def rms_answer(kind="right"):
+    gcps, _, predicted, *_ = georeferencing()
+    d = predicted - gcps.image_xy
+    squares = d[:, 0] ** 2 + d[:, 1] ** 2
+    n = len(d)
+    return {"right": np.sqrt(squares.sum() / n), "2n": np.sqrt(np.mean(d ** 2)),
+            "no root": squares.mean(), "mean R": np.sqrt(squares).mean(),
+            "no n": np.sqrt(squares.sum()), "dx only": np.sqrt(np.mean(d[:, 0] ** 2)),
+            "n - m": np.sqrt(squares.sum() / (n - 3))}[kind]
+
+
+def design(kind="right"):
+    gcps, points, *_ = georeferencing()
+    ones = np.ones(len(points))
+    return {"right": np.column_stack([ones, points]), "transposed": np.vstack([ones, points.T]),
+            "no ones": points.copy(), "swapped": np.column_stack([ones, points[:, ::-1]]),
+            "raw": np.column_stack([ones, gcps.map_xy[:5]]),
+            "degree 2": gcp.design_matrix(points, 2)}[kind]
+
+
+WINDOW, DX, DY = np.array([[10.0, 20.0], [30.0, 60.0]]), 0.3, 0.6
+
+
+def bilinear(dx=DX, dy=DY, left=None, upper_only=False):
+    upper = WINDOW[0, 0] * (1 - dx) + WINDOW[0, 1] * dx
+    lower = WINDOW[1, 0] * (1 - dx) + WINDOW[1, 1] * dx
+    return upper if upper_only else upper * (1 - dy) + lower * dy
+
+
+@functools.cache
+def step_edge():
+    edge = np.where(np.arange(16) < 8, 50, 200).astype(np.uint8)[np.newaxis].repeat(16, axis=0)
+    cols = np.linspace(2, 14, 241)
+    return edge, cols, np.full_like(cols, 8.0)
+
+
+def overshoot(kind="right"):
+    edge, cols, rows = step_edge()
+    floats = resample.interpolate(edge.astype(np.float64), cols, rows, "cubic")
+    right = floats.max() - edge.max()
+    if kind == "uint8":
+        return resample.interpolate(edge, cols, rows, "cubic").max() - edge.max()
+    if kind == "scipy":
+        from scipy.ndimage import map_coordinates
+        spline = map_coordinates(edge.astype(float), [rows - 0.5, cols - 0.5], order=3, mode="nearest")
+        return spline.max() - edge.max()
+    return {"right": right, "max": floats.max(), "negative": edge.max() - floats.max(),
+            "fraction": right / 150, "percent": 100 * right / 150,
+            "bilinear": resample.interpolate(edge.astype(np.float64), cols, rows, "bilinear").max()
+            - edge.max()}[kind]
+
+
+@functools.cache
+def regression():
+    pair = synthetic.contrast_pair(seed=4)
+    return pair, radiometry.mean_filter(pair.x_image, 3), radiometry.mean_filter(pair.y_image, 3)
+
+
+def gain_offset(kind="right"):
+    _, x, y = regression()
+    xs, ys = x.ravel(), y.ravel()
+    gain = np.sum((xs - xs.mean()) * (ys - ys.mean())) / np.sum((xs - xs.mean()) ** 2)
+    offset = ys.mean() - gain * xs.mean()
+    if kind == "x on y":
+        backwards, intercept = np.polyfit(ys, xs, 1)
+        return backwards, intercept
+    if kind == "ddof":
+        return np.cov(xs, ys)[0, 1] / np.var(xs), offset
+    if kind == "ratio":
+        return ys.mean() / xs.mean(), 0.0
+    if kind == "std":
+        return ys.std() / xs.std(), offset
+    if kind == "offset without gain":
+        return gain, ys.mean() - xs.mean()
+    if kind == "offset sign":
+        return gain, ys.mean() + gain * xs.mean()
+    return gain, offset
+
+
+def levels(kind="right"):
+    stretched = 0.885 * np.arange(256) + 27.107
+    return {"right": len(np.unique(np.clip(np.trunc(stretched), 0, 255))),
+            "floats": len(np.unique(stretched)),
+            "rounded": len(np.unique(np.clip(np.round(stretched), 0, 255))),
+            "lost": 256 - len(np.unique(np.trunc(stretched)))}[kind]
+
+
+def filter_size(kind="right"):
+    pair, x, y = regression()
+    images, power = ((x, y), 1) if kind == "filtered twice" else ((pair.x_image, pair.y_image), 1)
+    if kind == "r squared":
+        power = 2
+    r = {s: radiometry.fit_gain_offset(*images, smooth=s if s > 1 else None).r for s in (1, 3, 5, 7, 9)}
+    if kind == "largest r":
+        return max(r, key=r.get)
+    return next(s for s in r if r[s] ** power >= 0.8)
+
+
+REFERENCE = matching.Mesh([[0, 0], [300, 0], [0, 400]], [100, 200, 300])
+ADJUSTMENT = matching.Mesh([[10, 5], [5, 395], [305, 10]], [110, 290, 190])
+SOLUTION = np.array([1, 3, 2])
+
+
+def fitness(kind="right", solution=SOLUTION):
+    order = np.argsort(solution)
+    pairs = np.triu_indices(3, 1)
+    s_r, s_a = REFERENCE.areas, ADJUSTMENT.areas[order]
+    d_r = REFERENCE.distances[pairs]
+    d_a = (ADJUSTMENT.distances[pairs] if kind == "unpermuted distances"
+           else ADJUSTMENT.distances[order][:, order][pairs])
+    if kind == "adjustment sums":
+        fs, fe = 1 - np.abs(s_r - s_a).sum() / s_a.sum(), 1 - np.abs(d_r - d_a).sum() / d_a.sum()
+    elif kind == "not normalised":
+        fs, fe = 1 - np.abs(s_r - s_a).mean(), 1 - np.abs(d_r - d_a).mean()
+    else:
+        fs, fe = 1 - np.abs(s_r - s_a).sum() / s_r.sum(), 1 - np.abs(d_r - d_a).sum() / d_r.sum()
+    return {"fs only": fs, "fe only": fe, "errors": 0.5 * (1 - fs) + 0.5 * (1 - fe),
+            "identity": fitness("right", np.array([1, 2, 3])) if kind == "identity" else None
+            }.get(kind, 0.5 * fs + 0.5 * fe)
+
+
+CHROMOSOME = np.array([0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0])
+
+
+def decoded(kind="right"):
+    genes = CHROMOSOME.reshape(-1, 8)
+    weights = 2 ** np.arange(7, -1, -1)
+    return {"right": genes @ weights, "lsb first": genes @ weights[::-1],
+            "0-based": genes @ weights - 1, "popcount": genes.sum(axis=1),
+            "whole": int("".join(map(str, CHROMOSOME)), 2), "grouped": genes,
+            "bits": CHROMOSOME, "groups of 4": CHROMOSOME.reshape(-1, 4) @ 2 ** np.arange(3, -1, -1)
+            }[kind]
+
+
+@functools.cache
+def suboptimal():
+    reference8, adjustment8, truth = synthetic.synthetic_meshes(n=8, seed=5)
+    poor = matching.genetic_match(reference8, adjustment8, seed=2, population_size=10,
+                                  generations=15, mutation_rate=0.0)
+    return poor.solution, truth
+
+
+# -- Each check: how to call it, its right answer, its expected value --------------------------
+
+SKEW_ARGS = dict(latitude_deg=-23.5, frame_length_km=113.0, altitude_km=778.0, inclination_deg=98.5)
+
+CHECKS = {
+    "skew": (lambda a: exercises.check_skew(a, **SKEW_ARGS), skew,
+             lambda: abs(distortion.earth_rotation_skew(**SKEW_ARGS))),
+    "growth": (lambda a: exercises.check_pixel_growth(a, 7.5, 705.0), growth,
+               lambda: 100 * (float(distortion.pixel_size(7.5, 705.0)[1]) - 1)),
+    "swath": (lambda a: exercises.check_swath(a, 55.0, 705.0), swath,
+              lambda: distortion.swath_width(55.0, 705.0)),
+    "design": (lambda a: exercises.check_design_matrix(a, georeferencing()[1], order=1), design, None),
+    "rms": (lambda a: exercises.check_rms(a, georeferencing()[2], georeferencing()[0].image_xy),
+            rms_answer, lambda: gcp.rms_error(georeferencing()[2], georeferencing()[0].image_xy)),
+    "blunder": (lambda a: exercises.check_blunder(a, georeferencing()[0], order=2),
+                lambda: georeferencing()[3]["residual"].idxmax(), None),
+    "degree": (lambda a: exercises.check_degree_choice(a, *georeferencing()[4:]),
+               lambda: min((1, 2, 3), key=lambda n: gcp.check_point_errors(
+                   georeferencing()[4].map_xy, georeferencing()[4].image_xy, n,
+                   georeferencing()[5])[2]), None),
+    "bilinear": (lambda a: exercises.check_bilinear(a, WINDOW, DX, DY), bilinear, bilinear),
+    "method": (exercises.check_method_for_classes, lambda: "nearest", None),
+    "overshoot": (lambda a: exercises.check_overshoot(a, *step_edge()), overshoot, overshoot),
+    "gain": (lambda a: exercises.check_gain_offset(a, gain_offset()[1], *regression()[1:]),
+             lambda: gain_offset()[0], lambda: gain_offset()[0]),
+    "offset": (lambda a: exercises.check_gain_offset(gain_offset()[0], a, *regression()[1:]),
+               lambda: gain_offset()[1], lambda: gain_offset()[1]),
+    "levels": (lambda a: exercises.check_truncation_levels(a, 0.885, 27.107), levels, None),
+    "filter": (lambda a: exercises.check_filter_size(a, regression()[0].x_image, regression()[0].y_image),
+               filter_size, None),
+    "fitness": (lambda a: exercises.check_fitness(a, SOLUTION, REFERENCE, ADJUSTMENT), fitness, fitness),
+    "decode": (lambda a: exercises.check_decode(a, CHROMOSOME), decoded, None),
+    "segment": (lambda a: exercises.check_suboptimal_segment(a, *suboptimal()),
+                lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]) + 1, None),
+}
+
+
+@pytest.mark.parametrize("name", CHECKS)
+def test_the_right_answer_is_correct(name):
+    check, right, _ = CHECKS[name]
+    verdict = check(right())
+    assert verdict.ok, verdict
+    assert repr(verdict).startswith("Correct")
+
+
+@pytest.mark.parametrize("name", CHECKS)
+def test_the_placeholder_says_the_task_is_yours(name):
+    check, _, _ = CHECKS[name]
+    with pytest.raises(exercises.ExerciseNotSolved, match="this task is yours"):
+        check(...)
+
+
+# -- Every recognised mistake gets its own hint --------------------------------------------------
+
+MISTAKES = [
+    ("skew", lambda: skew(zeta="none"), "cos ζ is missing"),
+    ("skew", lambda: skew(zeta="sin"), "sin ζ where the formula has cos ζ"),
+    ("skew", lambda: skew(cos_phi=False), "cos φ is missing"),
+    ("skew", lambda: skew(speed_radius=R + 778.0), "satellite's own speed"),
+    ("skew", lambda: skew(inc_rad=False), "take radians"),
+    ("skew", lambda: skew(lat_rad=False, inc_rad=False), "radians"),     # NaN: arcsin of > 1
+    ("skew", lambda: -skew(), "positive number"),
+    ("skew", lambda: 1000 * skew(), "metres"),
+    ("growth", lambda: growth(curved=False), "flat-Earth growth"),
+    ("growth", lambda: growth(divide_by="nothing"), "along-track growth"),
+    ("growth", lambda: growth(divide_by="theta"), "not by cos θ"),
+    ("growth", lambda: growth(ratio=True), "minus 100"),
+    ("growth", lambda: growth() / 100, "multiply by 100"),
+    ("swath", lambda: swath("flat"), "flat-Earth swath"),
+    ("swath", lambda: swath("half"), "half the swath"),
+    ("swath", lambda: swath("chord"), "chord"),
+    ("swath", lambda: swath("degrees"), "γ must be in radians"),
+    ("swath", lambda: swath("orbit"), "radius R"),
+    ("swath", lambda: 1000 * swath(), "metres"),
+    ("design", lambda: design("transposed"), "ROW per GCP"),
+    ("design", lambda: design("no ones"), "constant term a0"),
+    ("design", lambda: design("swapped"), "x and y are swapped"),
+    ("design", lambda: design("raw"), "not the centred coordinates"),
+    ("rms", lambda: rms_answer("2n"), "dividing by 2n"),
+    ("rms", lambda: rms_answer("no root"), "square root is missing"),
+    ("rms", lambda: rms_answer("mean R"), "mean of the residuals"),
+    ("rms", lambda: rms_answer("no n"), "Divide the sum of squares by n"),
+    ("rms", lambda: rms_answer("dx only"), "Both components count"),
+    ("rms", lambda: rms_answer("n - m"), "mean error"),
+    ("blunder", lambda: georeferencing()[3]["residual"].idxmin(), "SMALLEST residual"),
+    ("blunder", lambda: georeferencing()[3]["residual"].nlargest(2).index[1], "drags its neighbours"),
+    ("degree", lambda: 3, "lowest RMS on the GCPs used in the fit"),
+    ("bilinear", lambda: bilinear(dx=DY, dy=DX), "dx and dy are swapped"),
+    ("bilinear", lambda: bilinear(dx=1 - DX, dy=1 - DY), "weights are reversed"),
+    ("bilinear", lambda: bilinear(dx=1 - DX), "along the line are reversed"),
+    ("bilinear", lambda: bilinear(dy=1 - DY), "between the lines are reversed"),
+    ("bilinear", lambda: WINDOW.mean(), "plain mean"),
+    ("bilinear", lambda: WINDOW[1, 0], "nearest pixel's value"),
+    ("bilinear", lambda: bilinear(upper_only=True), "upper line only"),
+    ("method", lambda: "bilinear", "invents class 4"),
+    ("method", lambda: "cubic", "invents classes"),
+    ("overshoot", lambda: overshoot("uint8"), "integer image"),
+    ("overshoot", lambda: overshoot("max"), "subtract the image's own maximum"),
+    ("overshoot", lambda: overshoot("negative"), "FROM the interpolated maximum"),
+    ("overshoot", lambda: overshoot("fraction"), "fraction of the step"),
+    ("overshoot", lambda: overshoot("percent"), "percentage of the step"),
+    ("overshoot", lambda: overshoot("bilinear"), "never leave the range"),
+    ("overshoot", lambda: overshoot("scipy"), "scipy's cubic spline"),
+    ("gain", lambda: gain_offset("x on y")[0], "regressed X on Y"),
+    ("gain", lambda: gain_offset("ddof")[0], "ddof"),
+    ("gain", lambda: gain_offset("ratio")[0], "through the origin"),
+    ("gain", lambda: gain_offset("std")[0], "reduced-major-axis"),
+    ("offset", lambda: gain_offset("offset without gain")[1], "gain is missing"),
+    ("offset", lambda: gain_offset("offset sign")[1], "Mind the sign"),
+    ("levels", lambda: levels("floats"), "no two DNs merge"),
+    ("levels", lambda: levels("rounded"), "You rounded"),
+    ("levels", lambda: levels("lost"), "LOST"),
+    ("filter", lambda: filter_size("largest r"), "largest r is not the goal"),
+    ("filter", lambda: filter_size("r squared"), "not r²"),
+    ("filter", lambda: filter_size("filtered twice"), "ORIGINAL images"),
+    ("fitness", lambda: fitness("fs only"), "FS alone"),
+    ("fitness", lambda: fitness("fe only"), "FE alone"),
+    ("fitness", lambda: fitness("errors"), "the errors"),
+    ("fitness", lambda: fitness("identity"), "identity matching"),
+    ("fitness", lambda: fitness("adjustment sums"), "REFERENCE's sums"),
+    ("fitness", lambda: fitness("unpermuted distances"), "Reorder the adjustment's distances"),
+    ("fitness", lambda: fitness("not normalised"), "normalised"),
+    ("decode", lambda: decoded("lsb first"), "least significant bit first"),
+    ("decode", lambda: decoded("0-based"), "do not subtract 1"),
+    ("decode", lambda: decoded("popcount"), "counted the 1 bits"),
+    ("segment", lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]), "count from 0"),
+]
+
+
+@pytest.mark.parametrize("name, answer, hint", MISTAKES, ids=[f"{m[0]}-{m[2][:24]}" for m in MISTAKES])
+def test_a_recognised_mistake_gets_its_hint(name, answer, hint):
+    check, _, _ = CHECKS[name]
+    verdict = check(answer())
+    assert not verdict, f"{name}: the mistake passes as {verdict}"
+    assert hint in verdict.hint, verdict
+    assert repr(verdict).startswith("Not yet") and "Not yet" in verdict._repr_html_()
+
+
+# -- Wrong forms get a message about the form ----------------------------------------------------
+
+NUMERIC = ["skew", "growth", "swath", "rms", "bilinear", "overshoot", "gain", "offset", "fitness",
+           "levels", "degree", "filter", "segment"]
+FORMS = [
+    (None, "did your function return its value"),
+    ("2.5", "not a string"),
+    (True, "yes/no"),
+    ((2.5,), "trailing comma"),
+    ([2.5], "[0]"),
+    (np.array([2.5]), ".item()"),
+    (np.array([1.0, 2.0]), "values"),
+    (1 + 2j, "complex"),
+    (float("nan"), "not a finite number"),
+]
+
+
+@pytest.mark.parametrize("name", NUMERIC)
+@pytest.mark.parametrize("answer, message", FORMS, ids=[repr(f[0]) for f in FORMS])
+def test_a_wrong_form_gets_a_message_about_the_form(name, answer, message):
+    check, _, _ = CHECKS[name]
+    verdict = check(answer)
+    assert not verdict
+    assert message in verdict.message, verdict
+    assert "TypeError" not in repr(verdict) and "nan px" not in repr(verdict)
+
+
+SPECIFIC_FORMS = [
+    ("design", None, "did your function return its value"),
+    ("design", [[1.0, 2.0], [3.0]], "not a table of numbers"),
+    ("design", np.ones((1, 5, 3)), "it needs 2"),
+    ("design", np.full((5, 3), np.nan), "NaN"),
+    ("design", np.ones((4, 3)), "one row per GCP"),
+    ("design", lambda: design("degree 2"), "degree-2 matrix"),
+    ("blunder", 13, "Counted from 0, position 13 is the blunder's row"),
+    ("blunder", 14, "Counted from 1, GCP number 14 is the blunder"),
+    ("blunder", 3, "Neither the row at position 3"),
+    ("blunder", 13.5, "whole number"),
+    ("blunder", "p14", "spelled differently"),
+    ("blunder", "P99", "not one of the GCP ids"),
+    ("blunder", ["P14"], "ONE id"),
+    ("blunder", None, "did your function return its value"),
+    ("degree", 0, "one of 1, 2 or 3"),
+    ("degree", 4, "one of 1, 2 or 3"),
+    ("degree", 2.5, "whole number"),
+    ("method", "near", "not one of resample.METHODS"),
+    ("method", "Nearest", "lower case"),
+    ("method", "nearest neighbour", "not one of resample.METHODS"),
+    ("method", 0, "not a string"),
+    ("method", None, "did your function return its value"),
+    ("levels", 226.5, "whole number"),
+    ("levels", lambda: np.unique(np.trunc(0.885 * np.arange(256) + 27.107)), "len("),
+    ("filter", 2, "no centre pixel"),
+    ("filter", 11, "sizes offered"),
+    ("filter", (3, 3), "the side n"),
+    ("decode", lambda: decoded("whole"), "whole chromosome as one number"),
+    ("decode", lambda: decoded("grouped"), "grouped but not read"),
+    ("decode", lambda: decoded("bits"), "bits themselves"),
+    ("decode", lambda: decoded("groups of 4"), "groups of 4 bits"),
+    ("decode", "3 1 4", "the text"),
+    ("decode", [3.5, 1, 4], "fractions"),
+    ("decode", 7, "one label per gene"),
+    ("decode", None, "did your function return its value"),
+    ("segment", 0, "numbered from 1"),
+    ("segment", 9, "numbered 1 to 8"),
+    ("segment", [2, 3], "ONE segment"),
+]
+
+
+@pytest.mark.parametrize("name, answer, message", SPECIFIC_FORMS,
+                         ids=[f"{f[0]}-{f[2][:20]}" for f in SPECIFIC_FORMS])
+def test_a_task_specific_wrong_form(name, answer, message):
+    check, _, _ = CHECKS[name]
+    verdict = check(answer() if callable(answer) else answer)
+    assert not verdict
+    assert message in verdict.message, verdict
+
+
+def test_a_gcp_index_is_not_called_a_wrong_gcp():
+    # index 13 IS the blunder (P14): the message says so and how to turn it into an id
+    verdict = CHECKS["blunder"][0](13)
+    assert "not the blunder" not in verdict.message and "gcps.ids[13]" in verdict.message
+
+
+def test_a_method_name_not_offered_is_not_told_it_averages():
+    for name in ("near", "Nearest", "mode"):
+        verdict = exercises.check_method_for_classes(name)
+        assert "averag" not in verdict.message, verdict
+
+
+# -- Which way and how far, never the expected value ------------------------------------------
+
+def spellings(value):
+    """The expected value written to 2-6 significant digits, as a student could read it."""
+    value = float(value)
+    found = set()
+    for digits in range(2, 7):
+        found.add(f"{value:#.{digits}g}".rstrip("."))
+        if value != 0:
+            decimals = digits - 1 - math.floor(math.log10(abs(value)))
+            rounded = round(value, decimals)
+            found.add(f"{rounded:.{max(decimals, 0)}f}")
+    return {text for text in found if "e" not in text}
+
+
+def leaks(text, value):
+    return [s for s in spellings(value) if re.search(rf"(?<![\d.]){re.escape(s)}(?![\d])", text)]
+
+
+WRONG_NUMBERS = [(name, answer) for name, answer, _ in MISTAKES if CHECKS[name][2] is not None]
+WRONG_NUMBERS += [(name, lambda: 0.0) for name in CHECKS if CHECKS[name][2] is not None]
+WRONG_NUMBERS += [(name, lambda n=name: 1.37 * float(CHECKS[n][2]())) for name in CHECKS
+                  if CHECKS[name][2] is not None]
+
+
+@pytest.mark.parametrize("name, answer", WRONG_NUMBERS, ids=[f"{w[0]}-{i}" for i, w in enumerate(WRONG_NUMBERS)])
+def test_no_verdict_gives_the_expected_value_away(name, answer):
+    check, _, expected = CHECKS[name]
+    verdict = check(answer())
+    assert not verdict
+    assert "should be" not in verdict.message
+    assert not leaks(repr(verdict), expected()), (repr(verdict), leaks(repr(verdict), expected()))
+
+
+def test_the_leak_detector_finds_a_leak():
+    assert leaks("but it should be about 7.14824 km", 7.148244182498834)
+    assert leaks("the swath is 2330 km", 2330.0635)
+    assert not leaks("too small by 10 to 50 %", 7.148244182498834)
+
+
+@pytest.mark.parametrize("factor, words", [
+    (1 + 1e-5, "close, but a little too large"), (1 - 0.005, "slightly too small"),
+    (1.05, "too large by 1 to 10 %"), (0.7, "too small by 10 to 50 %"),
+    (1.8, "between 1.5 and 2 times too large"), (0.15, "between 5 and 10 times too small"),
+    (-1.0, "the right size with the wrong sign"), (0.0, "zero"), (500.0, "more than 100 times"),
+])
+def test_the_verdict_says_which_way_and_roughly_how_far(factor, words):
+    verdict = CHECKS["rms"][0](factor * rms_answer())
+    assert not verdict and words in verdict.message, verdict
+    assert "-0.0 %" not in verdict.message and "+0.0 %" not in verdict.message
+
+
+def test_an_expected_value_of_zero_does_not_divide_by_zero():
+    flat = np.full((8, 8), 90, np.uint8)
+    cols, rows = np.linspace(2, 6, 9), np.full(9, 4.0)
+    assert exercises.check_overshoot(0.0, flat, cols, rows)
+    verdict = exercises.check_overshoot(3.0, flat, cols, rows)
+    assert not verdict and "too large" in verdict.message and "range" in verdict.message
+
+
+def test_degree_and_filter_verdicts_say_which_way():
+    check = CHECKS["degree"][0]
+    assert "higher degree" in check(1).message and "lower degree" in check(3).message
+    check = CHECKS["filter"][0]
+    assert "too small a window" in check(1).message and "smaller window" in check(7).message
+
+
+def test_html_verdicts_are_escaped():
+    verdict = exercises.Verdict(False, "`a` < b", "use <b>")
+    assert "&lt; b" in verdict._repr_html_() and "<b>" not in verdict._repr_html_().split("Hint")[1]
+
+
+# -- What students read: no leaks, no dangling references -------------------------------------
+
+def exercise_text():
+    cells = [cell for path in sorted((ROOT / "exercises").glob("*.ipynb"))
+             for cell in nbformat.read(path, as_version=4).cells]
+    return cells
+
+
+def test_exercise_setups_do_not_answer_another_task():
+    for cell in exercise_text():
+        if cell.cell_type == "code":
+            assert "pair.blunder" not in cell.source, cell.source
+
+
+def test_exercise_text_cites_the_course_not_the_papers_files():
+    for cell in exercise_text():
+        assert "paper 001" not in cell.source and "paper 000" not in cell.source
+    for check in (exercises.check_fitness,):
+        verdict = check(0.5, SOLUTION, REFERENCE, ADJUSTMENT)
+        assert "paper 00" not in verdict.hint and "chapter 6" in verdict.hint
+
+
+def test_the_earth_rotation_offset_points_west():
+    text = "\n".join(cell.source for cell in exercise_text() if cell.cell_type == "markdown")
+    assert "eastward offset" not in text and "westward offset" in text
+
+
+def test_summaries_do_not_state_the_answers():
+    text = "\n".join(cell.source for cell in exercise_text() if cell.cell_type == "markdown")
+    for name in ("growth", "swath", "overshoot"):
+        assert not leaks(text, CHECKS[name][2]()), name
+    assert not re.search(r"about 7 %", text)
