@@ -156,38 +156,69 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
     return widgets.VBox([widgets.HBox([play, step]), widgets.HBox([size, method]), output])
 
 
-def ga_evolution(reference, adjustment, truth, seed=0):
+def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
     """The GA's evolution, generation by generation, with controls that rerun it.
 
     Left: the two meshes side by side with the best solution's match lines
     (green right, red wrong); right: best and mean fitness and the
-    population's diversity up to the shown generation.
+    population's diversity up to the shown generation, on an axis that
+    spans the whole run from the first frame on.
+
+    Parameters
+    ----------
+    reference, adjustment : rsgeo.matching.Mesh
+    truth : array_like of int
+        The true matching (reference label of each adjustment segment).
+    seed : int
+        Seed of every run, so that only the controls change the outcome.
+    generations : int
+        Generations per run (at least 2).
+
+    Returns
+    -------
+    ipywidgets.VBox
+
+    Raises
+    ------
+    ValueError
+        If ``generations`` is under 2 or ``truth`` has not one label per adjustment segment.
     """
     import ipywidgets as widgets
 
+    if int(generations) < 2:
+        raise ValueError(f"generations must be at least 2 to show an evolution, got {generations}")
+    if len(truth) != len(adjustment):
+        raise ValueError(f"truth needs one label per adjustment segment ({len(adjustment)}), "
+                         f"got {len(truth)}")
+    generations = int(generations)
     plt = _pyplot()
     population = widgets.IntSlider(value=60, min=10, max=200, step=10, description="population")
     elite = widgets.FloatSlider(value=0.05, min=0, max=0.3, step=0.01, description="elitism")
-    mutation = widgets.FloatSlider(value=0.02, min=0.0, max=0.2, step=0.005, readout_format=".3f",
+    mutation = widgets.FloatSlider(value=0.04, min=0.0, max=0.2, step=0.005, readout_format=".3f",
                                    description="mutation")
-    selection = widgets.Dropdown(options=["tournament", "roulette"], value="tournament", description="selection")
-    generation = widgets.IntSlider(value=0, min=0, max=79, description="generation")
-    play = widgets.Play(value=0, min=0, max=79, step=1, interval=150, description="play")
+    selection = widgets.Dropdown(options=["tournament", "roulette"], value="tournament",
+                                 description="selection")
+    generation = widgets.IntSlider(value=0, min=0, max=generations - 1, description="generation")
+    play = widgets.Play(value=0, min=0, max=generations - 1, step=1, interval=150,
+                        description="play")
     widgets.jslink((play, "value"), (generation, "value"))
     runs = {}
 
     def run(population, elite, mutation, selection):
         key = (population, elite, mutation, selection)
         if key not in runs:
-            runs[key] = matching.genetic_match(reference, adjustment, seed=seed, population_size=population,
-                                               generations=80, elite_fraction=elite, mutation_rate=mutation,
-                                               selection=selection)
+            runs[key] = matching.genetic_match(
+                reference, adjustment, seed=seed, population_size=population,
+                generations=generations, elite_fraction=elite, mutation_rate=mutation,
+                selection=selection)
         return runs[key]
 
     def draw(population, elite, mutation, selection, generation):
         result = run(population, elite, mutation, selection)
         history = result.history[:generation + 1]
-        draw_evolution_frame(reference, adjustment, truth, history)
+        figure = draw_evolution_frame(reference, adjustment, truth, history,
+                                      generations=generations)
+        figure.tight_layout()
         plt.show()
 
     output = widgets.interactive_output(draw, {"population": population, "elite": elite, "mutation": mutation,
@@ -196,8 +227,34 @@ def ga_evolution(reference, adjustment, truth, seed=0):
                          widgets.HBox([play, generation]), output])
 
 
-def draw_evolution_frame(reference, adjustment, truth, history, figure=None):
-    """One frame of the GA's evolution (used by the widget and the jshtml animation)."""
+def draw_evolution_frame(reference, adjustment, truth, history, figure=None, generations=None):
+    """One frame of the GA's evolution (used by the widget and the jshtml animation).
+
+    Parameters
+    ----------
+    reference, adjustment : rsgeo.matching.Mesh
+    truth : array_like of int
+        The true matching, to colour match lines green (right) or red (wrong).
+    history : list of dict
+        ``MatchResult.history`` up to the generation shown (at least one entry).
+    figure : matplotlib Figure, optional
+        Cleared and drawn on (a new one when None).
+    generations : int, optional
+        Generations of the whole run: the evolution panel's x axis spans them
+        from the first frame on, so that no frame is empty (default: the
+        generations in ``history``).
+
+    Returns
+    -------
+    matplotlib Figure
+
+    Raises
+    ------
+    ValueError
+        If ``history`` is empty.
+    """
+    if not history:
+        raise ValueError("history must hold at least one generation to draw")
     plt = _pyplot()
     if figure is None:
         figure = plt.figure(figsize=(12, 4.5))
@@ -216,10 +273,13 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None):
     left.set(title=f"generation {len(history) - 1}: {np.asarray(solution).tolist()}", xlabel="x (map units)",
              ylabel="y (map units)")
     left.invert_yaxis()
-    generations = np.arange(len(history))
-    right.plot(generations, [h["best"] for h in history], label="best FA")
-    right.plot(generations, [h["mean"] for h in history], label="mean FA")
-    right.plot(generations, [h["diversity"] for h in history], label="diversity", linestyle=":")
-    right.set(xlabel="generation", ylabel="fitness / diversity", ylim=(0, 1.02), title="evolution")
+    shown = np.arange(len(history))
+    last = max(len(history), int(generations or 0)) - 1
+    style = {"marker": "o", "markersize": 3, "markevery": [len(history) - 1]}
+    right.plot(shown, [h["best"] for h in history], label="best FA", **style)
+    right.plot(shown, [h["mean"] for h in history], label="mean FA", **style)
+    right.plot(shown, [h["diversity"] for h in history], label="diversity", linestyle=":", **style)
+    right.set(xlabel="generation (count)", ylabel="FA or diversity (0–1)", ylim=(0, 1.02),
+              xlim=(-0.5, max(last, 1) + 0.5), title="evolution")
     right.legend(loc="lower right")
     return figure

@@ -60,6 +60,8 @@ def test_overlap_of_aligned_scenes_is_an_exact_cut():
     (lambda: radiometry.fit_gain_offset(np.ones((3, 3)), np.ones((3, 3)), method="lasso"), "unknown method"),
     (lambda: radiometry.apply_gain_offset(np.zeros(3), 1, 0), "integer dtype"),
     (lambda: radiometry.mean_filter(np.zeros((5, 5)), 4), "odd positive"),
+    (lambda: radiometry.apply_gain_offset(np.zeros(3, np.uint8), 1, 0, rounding="up"), "unknown rounding"),
+    (lambda: radiometry.seam_metrics(np.arange(9.0), np.ones(9)), "reference is constant"),
     (lambda: radiometry.overlap(data.load("cbers_b2_A"), data.load("nat1")), "different CRSs"),
 ])
 def test_bad_input_is_a_clear_value_error(call, message):
@@ -72,3 +74,118 @@ def test_scenes_that_do_not_overlap():
     far = data.Raster(a.array, a.transform @ affine.Affine.translation(5000, 0), a.crs, None, "", "far")
     with pytest.raises(ValueError, match="do not overlap"):
         radiometry.overlap(a, far)
+
+
+@pytest.mark.parametrize("smooth", [None, 3])
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_nan_is_a_clear_error_not_a_nan_gain(smooth, bad):
+    pair = synthetic.contrast_pair()
+    x = pair.x_image.astype(np.float64)
+    x[10, 20] = bad
+    with pytest.raises(ValueError, match=r"x_image holds 1 NaN or infinite.*np\.isfinite"):
+        radiometry.fit_gain_offset(x, pair.y_image, smooth=smooth)
+    y = pair.y_image.astype(np.float64)
+    y[0, 0] = bad
+    with pytest.raises(ValueError, match="y_image holds 1 NaN"):
+        radiometry.fit_gain_offset(pair.x_image, y, smooth=smooth)
+    # the way out the message gives: fit the finite pairs only
+    keep = np.isfinite(x)
+    masked = radiometry.fit_gain_offset(x[keep], pair.y_image[keep])
+    assert masked.gain == pytest.approx(radiometry.fit_gain_offset(pair.x_image, pair.y_image).gain,
+                                        abs=0.005)
+
+
+def test_seam_metrics_signs_and_ratio_on_a_known_stretch():
+    reference = np.arange(100.0).reshape(10, 10)
+    metrics = radiometry.seam_metrics(0.5 * reference + 10, reference)
+    assert metrics["mean_difference"] == pytest.approx(0.5 * 49.5 + 10 - 49.5)
+    assert metrics["std_difference"] == pytest.approx(-0.5 * reference.std())   # less contrast: < 0
+    assert metrics["std_ratio"] == pytest.approx(0.5)
+    assert radiometry.seam_metrics(reference, reference) == {
+        "mean_difference": 0.0, "std_difference": 0.0, "std_ratio": 1.0, "histogram_distance": 0.0}
+
+
+def test_paper_ols_matches_the_mean_but_flips_the_contrast_rma_does_not():
+    """Chapter 5's claim, on several noise draws: seam_metrics over the whole overlap."""
+    for seed in range(3):
+        pair = synthetic.contrast_pair(seed=seed)
+        x, y = pair.x_image, pair.y_image
+        before = radiometry.seam_metrics(x, y)
+        ols = radiometry.fit_gain_offset(x, y, smooth=3)
+        rma = radiometry.fit_gain_offset(x, y, method="rma")
+        after_ols = radiometry.seam_metrics(radiometry.apply_gain_offset(x, ols.gain, ols.offset), y)
+        after_rma = radiometry.seam_metrics(radiometry.apply_gain_offset(x, rma.gain, rma.offset), y)
+        assert before["mean_difference"] < -10 and before["std_difference"] > 4
+        assert abs(after_ols["mean_difference"]) < 1                  # the mean is matched ...
+        assert after_ols["std_difference"] < -4                      # ... the contrast overshoots
+        assert ols.gain < 0.93 * pair.gain                            # because the gain is diluted
+        assert rma.gain == pytest.approx(pair.gain, rel=0.05)
+        assert abs(after_rma["std_difference"]) < 1
+
+
+def test_truncation_lowers_the_mean_by_half_a_dn_rounding_does_not():
+    pair = synthetic.contrast_pair()
+    fit = radiometry.fit_gain_offset(pair.x_image, pair.y_image, smooth=3)
+    exact = fit.predict(pair.x_image).mean()          # in range: no clipping involved
+    truncated = radiometry.apply_gain_offset(pair.x_image, fit.gain, fit.offset)
+    rounded = radiometry.apply_gain_offset(pair.x_image, fit.gain, fit.offset, rounding="nearest")
+    assert truncated.mean() - exact == pytest.approx(-0.5, abs=0.05)
+    assert rounded.mean() - exact == pytest.approx(0.0, abs=0.05)
+    values = np.array([0, 1, 2, 3], dtype=np.uint8)
+    assert radiometry.apply_gain_offset(values, 1.0, 0.5, rounding="nearest").tolist() == [1, 2, 3, 4]
+    assert radiometry.apply_gain_offset(values, 1.0, 0.49, rounding="nearest").tolist() == [0, 1, 2, 3]
+
+
+def test_stretch_frame_titles_state_the_seam_metrics():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rsgeo.plot import draw_stretch_frame, figure_problems
+
+    pair = synthetic.contrast_pair()
+    fit = radiometry.fit_gain_offset(pair.x_image, pair.y_image, smooth=3)
+    fig, axes = plt.subplots(1, 3)
+    try:
+        for t in (0.0, 1.0):
+            shown = draw_stretch_frame(axes, pair.x_image, pair.y_image, fit.gain, fit.offset, t)
+            gain_t, offset_t = 1 + t * (fit.gain - 1), t * fit.offset
+            stretched = radiometry.apply_gain_offset(pair.x_image, gain_t, offset_t)
+            expected = radiometry.seam_metrics(stretched, pair.y_image)
+            assert shown == expected
+            title = axes[0].get_title()
+            assert f"mean Δ {expected['mean_difference']:+.1f} DN" in title
+            assert f"spread Δ {expected['std_difference']:+.1f} DN" in title
+            assert figure_problems(fig) == []
+    finally:
+        plt.close(fig)
+
+
+def test_regression_widget_reaches_the_chosen_fit():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rsgeo.plot import figure_problems
+    from rsgeo.widgets import regression_stretch
+
+    pair = synthetic.contrast_pair()
+    plt.close("all")
+    box = regression_stretch(pair.x_image, pair.y_image)
+    play_row, menu_row, _ = box.children
+    step, (size, method) = play_row.children[1], menu_row.children
+    try:
+        for chosen_size, chosen_method in ((3, "ols"), (7, "ols"), (1, "rma")):
+            size.value, method.value = chosen_size, chosen_method
+            step.value = 10
+            fit = radiometry.fit_gain_offset(pair.x_image, pair.y_image, method=chosen_method,
+                                             smooth=chosen_size if chosen_size > 1 else None)
+            figure = plt.gcf()
+            assert figure.axes[2].get_title().startswith(f"Y = {fit.gain:.3f} X + {fit.offset:.2f}")
+            assert figure_problems(figure) == []
+    finally:
+        plt.close("all")
+    with pytest.raises(ValueError, match="offered sizes"):
+        regression_stretch(pair.x_image, pair.y_image, size=4)
