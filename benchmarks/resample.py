@@ -1,15 +1,21 @@
 """Resampling speed: rsgeo beside GDAL, scikit-image and OpenCV, measured in the same run.
 
-    python benchmarks/resample.py [--sizes 2048 4096] [--repeat 3] [--output FILE]
+    python benchmarks/resample.py [--sizes 2048 4096] [--dtypes uint8 int16] [--repeat 3]
+                                  [--output FILE]
 
-Each peer warps the same random uint8 image with the same affine mapping (a
-rotation of 3° and a scale of 1.02, so that GDAL uses its plain 2 × 2 and
-4 × 4 kernels). GDAL runs single-threaded through rasterio's ``reproject``;
-OpenCV is skipped when it is not installed. The table gives megapixels of
-output per second (best of ``--repeat`` runs) and the ratio to GDAL. It is
-printed and saved as CSV (default ``benchmarks/results/resample.csv``, which
-chapter 4 shows), with the date, the machine's CPU count and the library
-versions as ``# key: value`` lines above the header (read it with
+Each peer warps the same random image (of each ``--dtypes``) with the same
+affine mapping (a rotation of 3° and a scale of 1.02, so that GDAL uses its
+plain 2 × 2 and 4 × 4 kernels). GDAL runs through rasterio's ``reproject``,
+single-threaded and with ``NUM_THREADS=2``; rsgeo's Numba kernels run with
+``num_threads=1`` and 2; scikit-image, and OpenCV (single-threaded; skipped
+when it is not installed) run once each. The table gives megapixels of output
+per second (best of ``--repeat`` runs) and the ratio to GDAL with the same
+number of threads. Numba's compile time is measured apart, in fresh processes
+with an empty cache, and is not in the speeds: every peer is warmed up first.
+The table is printed and saved as CSV (default
+``benchmarks/results/resample.csv``, which chapter 4 shows), with the date, the
+machine's CPU count, the library versions and the compile times as
+``# key: value`` lines above the header (read it with
 ``pandas.read_csv(file, comment="#")``).
 """
 
@@ -18,6 +24,9 @@ import csv
 import datetime
 import os
 import platform
+import subprocess
+import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -36,22 +45,23 @@ def mapping(size):
             * affine.Affine.scale(1 / 1.02) * affine.Affine.translation(-centre, -centre))
 
 
-def run_rsgeo(image, to_source, method):
-    return warp(image, to_source, image.shape, method=method)
+def run_rsgeo(image, to_source, method, threads=1):
+    return warp(image, to_source, image.shape, method=method, num_threads=threads)
 
 
-def run_gdal(image, to_source, method):
+def run_gdal(image, to_source, method, threads=1):
     from rasterio.enums import Resampling
     from rasterio.warp import reproject
 
     out = np.zeros_like(image)
     # source pixel -> "map" is the identity; output pixel -> map is to_source.
     reproject(image, out, src_transform=affine.Affine.identity(), dst_transform=to_source,
-              src_crs="EPSG:3857", dst_crs="EPSG:3857", resampling=Resampling[method], num_threads=1)
+              src_crs="EPSG:3857", dst_crs="EPSG:3857", resampling=Resampling[method],
+              num_threads=threads)
     return out
 
 
-def run_skimage(image, to_source, method):
+def run_skimage(image, to_source, method, threads=1):
     from skimage.transform import AffineTransform, warp
 
     order = {"nearest": 0, "bilinear": 1, "cubic": 3}[method]
@@ -62,16 +72,22 @@ def run_skimage(image, to_source, method):
     return warp(image, transform, order=order, preserve_range=True).astype(image.dtype)
 
 
-def run_opencv(image, to_source, method):
+def run_opencv(image, to_source, method, threads=1):
     import cv2
 
+    cv2.setNumThreads(threads)
     half = affine.Affine.translation(0.5, 0.5)
     matrix = np.array(~half * to_source * half).reshape(3, 3)[:2]
     flag = {"nearest": cv2.INTER_NEAREST, "bilinear": cv2.INTER_LINEAR, "cubic": cv2.INTER_CUBIC}[method]
     return cv2.warpAffine(image, matrix, image.shape[::-1], flags=flag | cv2.WARP_INVERSE_MAP)
 
 
-PEERS = {"rsgeo": run_rsgeo, "GDAL": run_gdal, "scikit-image": run_skimage, "OpenCV": run_opencv}
+# (label in the table, function, threads)
+PEERS = [("rsgeo", run_rsgeo, 1), ("GDAL", run_gdal, 1),
+         ("rsgeo, 2 threads", run_rsgeo, 2), ("GDAL, 2 threads", run_gdal, 2),
+         ("scikit-image", run_skimage, 1), ("OpenCV", run_opencv, 1)]
+# the GDAL row each peer is compared with: the same number of threads
+REFERENCE = {1: "GDAL", 2: "GDAL, 2 threads"}
 
 
 def best_time(function, repeat):
@@ -83,28 +99,70 @@ def best_time(function, repeat):
     return min(times)
 
 
-def benchmark(sizes=(2048, 4096), repeat=3, peers=None):
-    """Rows of (size, method, peer, megapixels per second, ratio to GDAL)."""
-    peers = peers or list(PEERS)
+def test_image(size, dtype):
+    """A random image covering the dtype's whole range (the same in every run)."""
+    info = np.iinfo(dtype)
+    return np.random.default_rng(0).integers(info.min, int(info.max) + 1, (size, size), dtype=dtype)
+
+
+def benchmark(sizes=(2048, 4096), dtypes=("uint8", "int16"), repeat=3, peers=None):
+    """Rows of (size, dtype, method, peer, threads, megapixels per second, ratio to GDAL).
+
+    Within one (size, dtype, method) the peers run one after another, each
+    warmed up once, then timed ``repeat`` times; the ratio compares speeds of
+    the same run, which is what stays meaningful on a busy machine.
+    """
+    peers = [peer for peer in PEERS if peers is None or peer[0] in peers]
     rows = []
     for size in sizes:
-        image = np.random.default_rng(0).integers(0, 256, (size, size), dtype=np.uint8)
         to_source = mapping(size)
-        for method in METHODS:
-            speeds = {}
-            for peer in peers:
-                try:
-                    seconds = best_time(lambda: PEERS[peer](image, to_source, method), repeat)
-                except ImportError:
-                    continue
-                speeds[peer] = size * size / seconds / 1e6
-            for peer, speed in speeds.items():
-                rows.append((size, method, peer, speed, speed / speeds["GDAL"] if "GDAL" in speeds else np.nan))
+        for dtype in dtypes:
+            image = test_image(size, dtype)
+            for method in METHODS:
+                speeds = {}
+                for label, function, threads in peers:
+                    try:
+                        function(image, to_source, method, threads)       # warm up
+                    except ImportError:
+                        continue
+                    seconds = best_time(lambda: function(image, to_source, method, threads),
+                                        repeat)
+                    speeds[label] = (threads, size * size / seconds / 1e6)
+                for label, (threads, speed) in speeds.items():
+                    reference = speeds.get(REFERENCE[threads])
+                    ratio = speed / reference[1] if reference else np.nan
+                    rows.append((size, dtype, method, label, threads, speed, ratio))
     return rows
+
+
+_COMPILE = """
+import time
+start = time.perf_counter()
+import numpy as np
+from rsgeo.resample import interpolate
+image = np.zeros((8, 8), dtype="{dtype}")
+for method in ("nearest", "bilinear", "cubic"):
+    interpolate(image, [1.5], [2.5], method)
+print(time.perf_counter() - start)
+"""
+
+
+def jit_seconds(dtype="uint8"):
+    """Seconds to import rsgeo.resample and run the 3 methods once on a tiny image,
+    in a new process: (with an empty Numba cache, i.e. compiling; then loading
+    what that run cached)."""
+    with tempfile.TemporaryDirectory() as cache:
+        env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+        code = _COMPILE.format(dtype=dtype)
+        runs = [float(subprocess.run([sys.executable, "-c", code], env=env, check=True,
+                                     capture_output=True, text=True).stdout)
+                for _ in range(2)]
+    return runs[0], runs[1]
 
 
 def machine():
     """What the numbers depend on: date, processor, CPU count and library versions."""
+    import numba
     import numpy
     import rasterio
     import skimage
@@ -117,6 +175,7 @@ def machine():
                                else os.cpu_count()),
             "processor": _processor_name(),
             "python": platform.python_version(), "numpy": numpy.__version__,
+            "numba": f"{numba.__version__} (threading layer {_threading_layer()})",
             "rsgeo": getattr(rsgeo, "__version__", "?"), "GDAL": rasterio.__gdal_version__,
             "rasterio": rasterio.__version__, "scikit-image": skimage.__version__}
     try:
@@ -126,6 +185,16 @@ def machine():
     except ImportError:
         info["OpenCV"] = "not installed"
     return info
+
+
+def _threading_layer():
+    import numba
+
+    try:
+        return numba.threading_layer()
+    except ValueError:              # no parallel region has run yet
+        warp(np.zeros((2, 2), dtype=np.uint8), affine.Affine.identity(), (2, 2))
+        return numba.threading_layer()
 
 
 def _processor_name():
@@ -138,35 +207,41 @@ def _processor_name():
     return platform.processor() or "unknown"
 
 
-def save_csv(rows, file, command=""):
-    """Write the table with the machine's description as ``# key: value`` lines above it."""
+def save_csv(rows, file, command="", extra=None):
+    """Write the table with the machine's description (and ``extra``) as
+    ``# key: value`` lines above it."""
     file = Path(file)
     file.parent.mkdir(parents=True, exist_ok=True)
     with open(file, "w", newline="") as handle:
-        for key, value in {**machine(), "command": command}.items():
+        for key, value in {**machine(), **(extra or {}), "command": command}.items():
             handle.write(f"# {key}: {value}\n")
         writer = csv.writer(handle)
-        writer.writerow(["size", "method", "peer", "Mpx_per_s", "ratio_to_GDAL"])
-        for size, method, peer, speed, ratio in rows:
-            writer.writerow([size, method, peer, f"{speed:.2f}", f"{ratio:.3f}"])
+        writer.writerow(["size", "dtype", "method", "peer", "threads", "Mpx_per_s", "ratio_to_GDAL"])
+        for size, dtype, method, peer, threads, speed, ratio in rows:
+            writer.writerow([size, dtype, method, peer, threads, f"{speed:.2f}", f"{ratio:.3f}"])
     return file
 
 
 def print_table(rows):
-    print(f"{'size':>6} {'method':>9} {'peer':>13} {'Mpx/s':>8} {'× GDAL':>7}")
-    for size, method, peer, speed, ratio in rows:
-        print(f"{size:>6} {method:>9} {peer:>13} {speed:8.1f} {ratio:7.2f}")
+    print(f"{'size':>6} {'dtype':>6} {'method':>9} {'peer':>17} {'Mpx/s':>8} {'× GDAL':>7}")
+    for size, dtype, method, peer, threads, speed, ratio in rows:
+        print(f"{size:>6} {dtype:>6} {method:>9} {peer:>17} {speed:8.1f} {ratio:7.2f}")
 
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[2048, 4096])
+    parser.add_argument("--dtypes", nargs="+", default=["uint8", "int16"])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--output", default=Path(__file__).parent / "results" / "resample.csv",
                         help="CSV file to write (default: benchmarks/results/resample.csv)")
     arguments = parser.parse_args()
-    table = benchmark(arguments.sizes, arguments.repeat)
+    compile_s, cached_s = jit_seconds()
+    jit = {"Numba JIT, first call of the 3 methods on uint8 (s)":
+           f"{compile_s:.1f} compiling (empty cache), {cached_s:.1f} from the cache"}
+    print("; ".join(f"{key}: {value}" for key, value in jit.items()))
+    table = benchmark(arguments.sizes, arguments.dtypes, arguments.repeat)
     print_table(table)
-    command = ("python benchmarks/resample.py --sizes "
-               + " ".join(map(str, arguments.sizes)) + f" --repeat {arguments.repeat}")
-    print("saved", save_csv(table, arguments.output, command))
+    command = ("python benchmarks/resample.py --sizes " + " ".join(map(str, arguments.sizes))
+               + " --dtypes " + " ".join(arguments.dtypes) + f" --repeat {arguments.repeat}")
+    print("saved", save_csv(table, arguments.output, command, jit))

@@ -7,8 +7,8 @@ One module per topic of the course:
 - :mod:`rsgeo.distortion` - systematic distortions (chapter 1);
 - :mod:`rsgeo.gcp` - polynomial GCP models, residuals, RMS (chapters 2-3);
 - :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4);
-- :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, paper 000);
-- :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm (chapter 6, paper 001);
+- :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
+- :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm (chapter 6, the GA paper);
 - :mod:`rsgeo.exercises` - checks for the exercises;
 - :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets on top of the maths.
 """

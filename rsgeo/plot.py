@@ -59,7 +59,7 @@ def draw_grid(ax, lines, **style):
 
 
 def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
-    """A relational mesh: centroids joined by their distances (paper 001, fig. 4)."""
+    """A relational mesh: centroids joined by their distances (the GA paper, fig. 4)."""
     centroids = np.asarray(centroids)
     if edges:
         for i in range(len(centroids)):

@@ -1,4 +1,4 @@
-"""Contrast matching of overlapping images by linear regression (paper 000).
+"""Contrast matching of overlapping images by linear regression (the regression paper, chapter 5).
 
 The paper's recipe: regress photo B (Y) on photo A (X) over their common
 area; the raw correlation is low (r = 0.4495) because noise and slight
@@ -86,7 +86,7 @@ def mean_filter(image, size=3):
 
 
 def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
-    """Fit Y = gain·X + offset between two co-registered images (paper 000, IDRISI REGRESS).
+    """Fit Y = gain·X + offset between two co-registered images (the regression paper of chapter 5, IDRISI REGRESS).
 
     Parameters
     ----------

@@ -1,4 +1,7 @@
-"""Forest segments and their relational mesh, from an image (paper 001, steps 2-3).
+"""Forest segments and their relational mesh, from an image (the GA paper, steps 2-3).
+
+The GA paper: *Homologous regions by genetic algorithms for the registration of
+multi-sensor images* (see the book's bibliography and chapter 6).
 
 The paper segmented and classified its images in eCognition and kept only the
 forest segments. This module does the same with a short, documented

@@ -23,6 +23,14 @@ positions rsgeo and ``gdalwarp`` give the same pixels, bit for bit:
   "AvoidNoData", which keeps the footprint of valid pixels visible in the
   values. Nearest copies source values untouched, as GDAL does.
 
+Each method is one loop over the output pixels, as GDAL's GWK functions and
+the lecture describe it: for each output pixel, find its position in the
+source, take the 1 (nearest), 4 (bilinear) or 16 (cubic) neighbours, weight
+them, round, store. The loops are compiled by Numba (``cache=True``, so the
+machine code is kept between sessions; no ``fastmath``, so the floating-point
+operations and their order stay GDAL's) and share the output rows among
+``num_threads`` threads (1 by default; the result does not depend on it).
+
 GDAL widens the kernels when it downsamples (output pixels larger than 1/0.95
 input pixels); these are the plain 2 x 2 and 4 x 4 kernels, which GDAL uses when
 the scale is 0.95 or more. So "bit for bit" holds under these conditions only:
@@ -38,8 +46,18 @@ inverse), which would give an image of nothing but nodata, and a bands-last
 (rows, cols, 3) array.
 """
 
-import affine
-import numpy as np
+import os
+
+# Numba's OpenMP threading layer, when it is the one chosen, loads GNU OpenMP at
+# the first parallel call; by default its idle threads spin, which on a machine
+# shared with other work makes two threads slower than one. Wait passively
+# instead, unless the user chose otherwise (set before OpenMP loads).
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+import affine  # noqa: E402
+import numba  # noqa: E402
+import numpy as np  # noqa: E402
+from numba import njit, prange  # noqa: E402
 
 from ._checks import as_image, check_choice
 
@@ -78,36 +96,37 @@ def keys_weights(t, a=-0.5):
     """
     t = np.asarray(t, dtype=np.float64)
     if a == -0.5:
-        return np.stack(_gdal_cubic_weights(t))
+        return _cubic_weights_of_array(t.ravel()).reshape((4,) + t.shape)
     return np.stack([cubic_kernel(t + 1, a), cubic_kernel(t, a),
                      cubic_kernel(1 - t, a), cubic_kernel(2 - t, a)])
 
 
-def _gdal_cubic_weights(t):
-    """GDAL's GWKCubicComputeWeights, operation for operation, with few temporaries.
+@njit(cache=True, inline="always")
+def _cubic_weights(t):
+    """GDAL's GWKCubicComputeWeights for one offset t, operation for operation.
 
     GDAL writes w0 = ½t·(−1 + t·(2 − t)), w1 = 1 + ½t²·(−5 + 3t),
-    w2 = ½t·(1 + t·(4 − 3t)), w3 = ½t²·(−1 + t); the in-place steps below
-    only swap the operands of additions and products, which is exact in
-    floating point, so the weights are GDAL's to the last bit.
+    w2 = ½t·(1 + t·(4 − 3t)), w3 = ½t²·(−1 + t); the steps below only swap
+    the operands of additions and products, which is exact in floating point,
+    so the weights are GDAL's to the last bit.
     """
     half_t = 0.5 * t
     three_t = 3.0 * t
     half_t2 = half_t * t
-    w0 = 2 - t
-    w0 *= t
-    w0 -= 1
-    w0 *= half_t
-    w1 = three_t - 5
-    w1 *= half_t2
-    w1 += 1
-    w2 = 4 - three_t
-    w2 *= t
-    w2 += 1
-    w2 *= half_t
-    w3 = t - 1
-    w3 *= half_t2
+    w0 = ((2.0 - t) * t - 1.0) * half_t
+    w1 = (three_t - 5.0) * half_t2 + 1.0
+    w2 = ((4.0 - three_t) * t + 1.0) * half_t
+    w3 = (t - 1.0) * half_t2
     return w0, w1, w2, w3
+
+
+@njit(cache=True)
+def _cubic_weights_of_array(t):
+    """The four weights of every offset in a 1-D array t, as a (4, t.size) array."""
+    weights = np.empty((4, t.size))
+    for k in range(t.size):
+        weights[0, k], weights[1, k], weights[2, k], weights[3, k] = _cubic_weights(t[k])
+    return weights
 
 
 def cubic_kernel(s, a=-0.5):
@@ -148,12 +167,7 @@ def bilinear_weights(t):
     return np.stack([1.0 - t, t])
 
 
-# Positions are processed in chunks of this many, so that the temporaries of
-# the kernels stay in the processor's cache.
-_CHUNK = 32768
-
-
-def interpolate(image, cols, rows, method="nearest", nodata=0):
+def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1):
     """Values of an image at continuous (col, row) positions, by GDAL's rules.
 
     Parameters
@@ -167,6 +181,10 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
         Interpolator (lecture, slide "Reamostragem").
     nodata : int or float
         Value given to positions outside the image; must fit the dtype.
+    num_threads : int
+        Threads that share the rows of positions (the last axis of ``cols`` is
+        a row); 1 by default, for reproducible timings. The result does not
+        depend on it.
 
     Returns
     -------
@@ -178,7 +196,8 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
     ValueError
         If the image is not 2-D or 3-D (or looks bands last, (rows, cols, 3)),
         the method is unknown, cols and rows differ in shape or hold NaN or
-        infinity, or nodata does not fit the dtype.
+        infinity, nodata does not fit the dtype, or num_threads is not a whole
+        number from 1 to the number of threads Numba may use.
 
     Examples
     --------
@@ -190,6 +209,20 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
     """
     image = check_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
+    num_threads = check_num_threads(num_threads)
+    cols, rows = _check_positions(cols, rows)
+    nodata = check_nodata(nodata, image.dtype)
+
+    shape = (image.shape[0],) + cols.shape if image.ndim == 3 else cols.shape
+    # rows of positions for the threads: the last axis, or blocks of a long 1-D list
+    row_length = cols.shape[-1] if cols.ndim >= 2 else min(cols.size, _BLOCK)
+    out, _ = _resample(image, method, nodata, num_threads, cols.ravel(), rows.ravel(),
+                       _NO_AFFINE, cols.size, row_length)
+    return out.reshape(shape)
+
+
+def _check_positions(cols, rows):
+    """cols and rows as float64 arrays of one shape, finite; else ValueError."""
     cols = np.asarray(cols, dtype=np.float64)
     rows = np.asarray(rows, dtype=np.float64)
     if cols.shape != rows.shape:
@@ -197,33 +230,77 @@ def interpolate(image, cols, rows, method="nearest", nodata=0):
     if not (np.isfinite(cols).all() and np.isfinite(rows).all()):
         raise ValueError("cols and rows hold NaN or infinite positions; every position must be finite "
                          "(mark points you do not want with a position outside the image instead)")
-    nodata = check_nodata(nodata, image.dtype)
+    return cols, rows
 
+
+# A 1-D list of positions is shared among threads in blocks of this many.
+_BLOCK = 4096
+# "No affine mapping": the positions come as arrays (see _source_position).
+_NO_AFFINE = np.empty(0)
+_NO_POSITIONS = np.empty(0)
+# Float types Numba cannot compute in are computed in this type, then cast back.
+_COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
+                np.dtype(np.longdouble): np.dtype(np.float64)}
+
+
+def check_num_threads(num_threads):
+    """Return ``num_threads`` as an int from 1 to Numba's thread count, else raise ValueError.
+
+    Examples
+    --------
+    >>> check_num_threads(1)
+    1
+    >>> check_num_threads(0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: num_threads must be a whole number from 1 to ...
+    """
+    most = numba.config.NUMBA_NUM_THREADS
+    try:
+        ok = float(num_threads).is_integer() and 1 <= num_threads <= most
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise ValueError(f"num_threads must be a whole number from 1 to {most} (the threads "
+                         f"Numba may use here, NUMBA_NUM_THREADS), got {num_threads!r}")
+    return int(num_threads)
+
+
+def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, row_length):
+    """Run one method's kernel over ``size`` output pixels; return (out, pixels inside).
+
+    ``out`` is (bands, size) in ``image``'s dtype. Positions come from the
+    arrays ``cols``, ``rows`` or, when ``to_source`` holds the six numbers of an
+    affine map (output pixel -> source pixel), are computed pixel by pixel
+    from an output grid ``row_length`` pixels wide.
+    """
     bands = image if image.ndim == 3 else image[np.newaxis]
-    height, width = bands.shape[1:]
-    flat_bands = [np.ascontiguousarray(band).ravel() for band in bands]
-    kernel = {"nearest": _nearest, "bilinear": _bilinear, "cubic": _cubic}[method]
-    flat_cols, flat_rows = cols.ravel(), rows.ravel()
-    out = np.full((bands.shape[0], flat_cols.size), nodata, dtype=image.dtype)
-    for start in range(0, flat_cols.size, _CHUNK):
-        c, r = flat_cols[start:start + _CHUNK], flat_rows[start:start + _CHUNK]
-        inside = _inside(c, r, width, height)
-        everywhere = inside.all()
-        if not everywhere:
-            c, r = c[inside], r[inside]
-        for band_index, flat in enumerate(flat_bands):
-            exact = kernel(flat, width, height, c, r)
-            values = _to_dtype(exact, image.dtype)
-            if method != "nearest":
-                # GDAL's nearest-neighbour path copies source values as they are.
-                values = _avoid_nodata(exact, values, nodata)
-            target = out[band_index, start:start + _CHUNK]
-            if everywhere:
-                target[:] = values
-            else:
-                target[inside] = values
-    shape = (bands.shape[0],) + cols.shape if image.ndim == 3 else cols.shape
-    return out.reshape(shape)
+    dtype = bands.dtype
+    work = _COMPUTED_AS.get(dtype, dtype.newbyteorder("="))  # Numba needs native byte order
+    bands = np.ascontiguousarray(bands, dtype=work)
+    out = np.empty((bands.shape[0], size), dtype=work)
+    if size == 0:
+        return out.astype(dtype), 0
+    fill = np.array([nodata], dtype=work)
+    if work.kind in "ui":
+        info = np.iinfo(work)
+        # the next value away from nodata, GDAL's AvoidNoData
+        step = np.array([nodata + 1 if nodata == info.min else nodata - 1], dtype=work)
+        low, high = (float(info.min), float(info.max)) if work.itemsize < 8 else (-np.inf, np.inf)
+    else:
+        step = np.array([np.nextafter(work.type(nodata), work.type(np.inf))], dtype=work)
+        low, high = -np.inf, np.inf
+    n_rows = -(-size // row_length)
+    kernel = {"nearest": _nearest_loop, "bilinear": _bilinear_loop, "cubic": _cubic_loop}[method]
+    previous = numba.get_num_threads()
+    numba.set_num_threads(num_threads)
+    try:
+        inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows), to_source,
+                        n_rows, row_length, out, fill, step, float(nodata), work.kind in "ui",
+                        low, high)
+    finally:
+        numba.set_num_threads(previous)
+    return (out if work == dtype else out.astype(dtype)), inside
 
 
 def check_nodata(nodata, dtype):
@@ -240,124 +317,259 @@ def check_nodata(nodata, dtype):
     return nodata
 
 
-def _to_dtype(values, dtype):
-    """GDAL's GWKClampValueT: round half up, clamp to the integer dtype's range."""
-    if dtype.kind in "ui":
-        info = np.iinfo(dtype)
-        values = np.floor(values + 0.5)
-        if dtype.itemsize < 8:
-            np.clip(values, info.min, info.max, out=values)
-        return values.astype(dtype)
-    return values.astype(dtype)
+# -- the kernels: one loop over output pixels per method ----------------------
+#
+# Each is compiled by Numba (cache=True keeps the machine code between
+# sessions; no fastmath, so every floating-point operation happens in the order
+# written here, which is GDAL's). Threads share the output rows (prange).
 
 
-def _avoid_nodata(exact, values, nodata):
-    """GDAL's AvoidNoData: a valid pixel that comes out equal to nodata moves one step away.
+@njit(cache=True, inline="always")
+def _u(index):
+    """An index known to be in range, unsigned: Numba then skips its negative-index
+    wrap-around test, which made the nearest kernel three times slower."""
+    return np.uint64(index)
 
-    Without it a dark pixel of a valid area would read as "outside the image".
-    Integers step down (nodata − 1), or up from the dtype's minimum; floats are
-    compared before the cast to the output type, as GDAL does, and step to the
-    next representable value.
+
+@njit(cache=True, inline="always")
+def _pixel(bands, band, row, col):
+    """The source value ``bands[band, row, col]``, for indices inside the image."""
+    return bands[_u(band), _u(row), _u(col)]
+
+
+@njit(cache=True, inline="always")
+def _source_position(k, i, j, cols, rows, to_source):
+    """Where output pixel k (row i, column j of the output grid) falls in the source.
+
+    Either read from the arrays of positions, or computed from the affine map
+    output pixel -> source pixel at the cell's centre (j + 0.5, i + 0.5), with
+    the operations of :func:`grid_positions`.
     """
-    if values.dtype.kind in "ui":
-        clash = values == nodata
-        if clash.any():
-            values[clash] = nodata + 1 if nodata == np.iinfo(values.dtype).min else nodata - 1
+    if to_source.size == 0:
+        return cols[_u(k)], rows[_u(k)]
+    x = j + 0.5
+    y = i + 0.5
+    return (to_source[0] * x + (to_source[1] * y + to_source[2]),
+            to_source[3] * x + (to_source[4] * y + to_source[5]))
+
+
+@njit(cache=True, inline="always")
+def _is_inside(col, row, width, height):
+    """GDAL's rule: a position is in the image if it is in [0, W) x [0, H)."""
+    return (col >= 0.0 and row >= 0.0
+            and np.floor(col + _GDAL_INDEX_EPSILON) < width
+            and np.floor(row + _GDAL_INDEX_EPSILON) < height)
+
+
+@njit(cache=True, inline="always")
+def _store(out, band, k, value, step, nodata, is_int, low, high):
+    """Write an interpolated value: GDAL's GWKClampValueT, then AvoidNoData.
+
+    Integers are rounded half up, floor(v + 0.5), and clamped to the dtype's
+    range; floats are cast. A valid pixel that comes out equal to nodata moves
+    one step away from it (``step``), so that it does not read as "outside the
+    image": integers are compared after rounding, floats before the cast.
+    (The comparison is made before the store, in float64: reading the stored
+    value back would halve the kernel's speed. It is exact for every integer
+    dtype up to 32 bits and for 64-bit values within ±2**53.)
+    """
+    if is_int:
+        value = np.floor(value + 0.5)
+        if value < low:
+            value = low
+        elif value > high:
+            value = high
+    if value == nodata:
+        out[_u(band), _u(k)] = step[0]
     else:
-        clash = exact == nodata
-        if clash.any():
-            values[clash] = np.nextafter(values.dtype.type(nodata), values.dtype.type(np.inf))
-    return values
+        out[_u(band), _u(k)] = value
 
 
-def _nearest(flat, width, height, c, r):
-    cols = (c + _GDAL_INDEX_EPSILON).astype(np.intp)  # positive here: truncation is floor
-    rows = (r + _GDAL_INDEX_EPSILON).astype(np.intp)
-    return flat.take(rows * width + cols)
+@njit(cache=True, parallel=True)
+def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+                  is_int, low, high):
+    """Nearest neighbour (GDAL's GWKNearest), pixel by pixel.
+
+    For each output pixel: find its position (col, row) in the source; if it
+    is outside the image, write nodata; otherwise copy the value of the pixel
+    that contains it, the one whose corner-based indices are floor(col) and
+    floor(row). Values are copied as they are: no rounding, no AvoidNoData.
+    Returns the number of output pixels that fell inside the source.
+    """
+    n_bands, height, width = bands.shape
+    size = out.shape[1]
+    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
+    for i in prange(n_rows):
+        landed_in_row = 0
+        for j in range(row_length):
+            k = i * row_length + j
+            if k >= size:
+                break
+            col, row = _source_position(k, i, j, cols, rows, to_source)
+            if not _is_inside(col, row, width, height):
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
+            landed_in_row += 1
+            # positive here, so truncation is floor; GDAL adds the same tiny margin
+            c = int(col + _GDAL_INDEX_EPSILON)
+            r = int(row + _GDAL_INDEX_EPSILON)
+            for band in range(n_bands):
+                out[_u(band), _u(k)] = _pixel(bands, band, r, c)
+        landed[i] = landed_in_row
+    return landed.sum()
 
 
-def _bilinear(flat, width, height, c, r):
-    """GDAL's GWKBilinearResampleNoMasks4SampleT, vectorised."""
-    left = np.floor(c - 0.5)
-    top = np.floor(r - 0.5)
-    ratio_x = 1.5 - (c - left)
-    ratio_y = 1.5 - (r - top)
-    left, top = left.astype(np.intp), top.astype(np.intp)
-    interior = (left >= 0) & (left < width - 1) & (top >= 0) & (top < height - 1)
-    if interior.all():
-        return _bilinear_interior(flat, width, left, top, ratio_x, ratio_y)
-    values = np.empty(c.shape, dtype=np.float64)
-    values[interior] = _bilinear_interior(flat, width, left[interior], top[interior],
-                                          ratio_x[interior], ratio_y[interior])
-    edge = ~interior
-    values[edge] = _bilinear_edge(flat, width, height, left[edge], top[edge], ratio_x[edge], ratio_y[edge])
-    return values
+@njit(cache=True, inline="always")
+def _bilinear_at(bands, band, col, row):
+    """Bilinear value at (col, row): GDAL's GWKBilinearResampleNoMasks4SampleT.
 
-
-def _bilinear_interior(flat, width, left, top, ratio_x, ratio_y):
-    index = top * width + left
-    other_x = 1.0 - ratio_x
-    # flat[k:].take(index) reads pixel index + k without a new index array
-    upper = flat.take(index) * ratio_x + flat[1:].take(index) * other_x
-    lower = flat[width:].take(index) * ratio_x + flat[width + 1:].take(index) * other_x
-    return upper * ratio_y + lower * (1.0 - ratio_y)
-
-
-def _bilinear_edge(flat, width, height, left, top, ratio_x, ratio_y):
-    """Bilinear at the image border: weights of the missing pixels dropped, the rest renormalised."""
-    accumulator = np.zeros(left.shape)
-    divisor = np.zeros(left.shape)
-    # GDAL's order: upper left, upper right, lower right, lower left.
-    for dx, dy, weight in ((0, 0, ratio_x * ratio_y),
-                           (1, 0, (1.0 - ratio_x) * ratio_y),
-                           (1, 1, (1.0 - ratio_x) * (1.0 - ratio_y)),
-                           (0, 1, ratio_x * (1.0 - ratio_y))):
-        col, row = left + dx, top + dy
-        ok = (col >= 0) & (col < width) & (row >= 0) & (row < height)
-        divisor[ok] += weight[ok]
-        accumulator[ok] += flat.take(row[ok] * width + col[ok]) * weight[ok]
-    return np.where(divisor == 1.0, accumulator, accumulator / np.where(divisor == 0, 1.0, divisor))
-
-
-def _cubic(flat, width, height, c, r):
-    """GDAL's cubic convolution (GWKCubicResampleNoMasks4SampleT), vectorised."""
-    # GDAL truncates towards zero here; negative positions fall back to bilinear anyway.
-    left = np.trunc(c - 0.5)
-    top = np.trunc(r - 0.5)
-    dx, dy = c - 0.5 - left, r - 0.5 - top
-    left, top = left.astype(np.intp), top.astype(np.intp)
-    interior = (left >= 1) & (left + 2 < width) & (top >= 1) & (top + 2 < height)
-    if interior.all():
-        return _cubic_interior(flat, width, left, top, dx, dy)
-    values = np.empty(c.shape, dtype=np.float64)
-    values[interior] = _cubic_interior(flat, width, left[interior], top[interior], dx[interior], dy[interior])
-    edge = ~interior
-    values[edge] = _bilinear(flat, width, height, c[edge], r[edge])
-    return values
-
-
-def _cubic_interior(flat, width, left, top, dx, dy):
-    weights_x = _gdal_cubic_weights(dx)
-    weights_y = _gdal_cubic_weights(dy)
-    index = (top - 1) * width + (left - 1)
-    total = np.empty(index.shape)
-    along_row = np.empty(index.shape)
-    term = np.empty(index.shape)
-    for j in range(4):
-        # Taking from a view that starts k elements later reads pixel index + k
-        # without building a new index array.
-        start = j * width
-        # CONVOL4 along the row, in GDAL's order of additions.
-        np.multiply(weights_x[0], flat[start:].take(index), out=along_row)
-        for i in range(1, 4):
-            np.multiply(weights_x[i], flat[start + i:].take(index), out=term)
-            along_row += term
-        if j == 0:
-            np.multiply(weights_y[0], along_row, out=total)
+    The pixel centres are at half-integers, so the 2 x 2 window starts at
+    floor(col - 0.5), floor(row - 0.5); ratio_x and ratio_y are the weights of
+    its left column and top row. At the border, pixels outside the image are
+    left out and the weights of the others renormalised (GDAL's order: upper
+    left, upper right, lower right, lower left).
+    """
+    height, width = bands.shape[1], bands.shape[2]
+    left_f = np.floor(col - 0.5)
+    top_f = np.floor(row - 0.5)
+    ratio_x = 1.5 - (col - left_f)
+    ratio_y = 1.5 - (row - top_f)
+    left, top = int(left_f), int(top_f)
+    if left >= 0 and left < width - 1 and top >= 0 and top < height - 1:
+        other_x = 1.0 - ratio_x
+        upper = (_pixel(bands, band, top, left) * ratio_x
+                 + _pixel(bands, band, top, left + 1) * other_x)
+        lower = (_pixel(bands, band, top + 1, left) * ratio_x
+                 + _pixel(bands, band, top + 1, left + 1) * other_x)
+        return upper * ratio_y + lower * (1.0 - ratio_y)
+    accumulator = 0.0
+    divisor = 0.0
+    for corner in range(4):
+        dx = 0 if corner == 0 or corner == 3 else 1
+        dy = 0 if corner < 2 else 1
+        if corner == 0:
+            weight = ratio_x * ratio_y
+        elif corner == 1:
+            weight = (1.0 - ratio_x) * ratio_y
+        elif corner == 2:
+            weight = (1.0 - ratio_x) * (1.0 - ratio_y)
         else:
-            np.multiply(weights_y[j], along_row, out=term)
-            total += term
-    return total
+            weight = ratio_x * (1.0 - ratio_y)
+        c, r = left + dx, top + dy
+        if c >= 0 and c < width and r >= 0 and r < height:
+            divisor += weight
+            accumulator += _pixel(bands, band, r, c) * weight
+    if divisor == 1.0:
+        return accumulator
+    return accumulator / (divisor if divisor != 0.0 else 1.0)
+
+
+@njit(cache=True, parallel=True)
+def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+                   is_int, low, high):
+    """Bilinear interpolation, pixel by pixel.
+
+    For each output pixel: find its position (col, row) in the source; if it
+    is outside the image, write nodata; otherwise take the 2 x 2 neighbours
+    whose centres surround it, weight each by how close it is along the row
+    and along the column (:func:`_bilinear_at`), round and store the sum.
+    Returns the number of output pixels that fell inside the source.
+    """
+    n_bands, height, width = bands.shape
+    size = out.shape[1]
+    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
+    for i in prange(n_rows):
+        landed_in_row = 0
+        for j in range(row_length):
+            k = i * row_length + j
+            if k >= size:
+                break
+            col, row = _source_position(k, i, j, cols, rows, to_source)
+            if not _is_inside(col, row, width, height):
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
+            landed_in_row += 1
+            for band in range(n_bands):
+                value = _bilinear_at(bands, band, col, row)
+                _store(out, band, k, value, step, nodata, is_int, low, high)
+        landed[i] = landed_in_row
+    return landed.sum()
+
+
+@njit(cache=True, parallel=True)
+def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+                is_int, low, high):
+    """Cubic convolution (GDAL's GWKCubicResampleNoMasks4SampleT), pixel by pixel.
+
+    For each output pixel: find its position (col, row) in the source; if it
+    is outside the image, write nodata. Otherwise take the 4 x 4 neighbours
+    around it: the pixel left of and above the position (GDAL truncates
+    col - 0.5 and row - 0.5 towards zero) and one more on each side. Weight
+    each row of four with Keys' weights of the offset dx along the row, then
+    the four row sums with the weights of dy (GDAL's CONVOL4, in its order of
+    additions); round and store. Where the 4 x 4 window leaves the image,
+    fall back to bilinear, as GDAL does.
+    Returns the number of output pixels that fell inside the source.
+    """
+    n_bands, height, width = bands.shape
+    size = out.shape[1]
+    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
+    for i in prange(n_rows):
+        landed_in_row = 0
+        for j in range(row_length):
+            k = i * row_length + j
+            if k >= size:
+                break
+            col, row = _source_position(k, i, j, cols, rows, to_source)
+            if not _is_inside(col, row, width, height):
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
+            landed_in_row += 1
+            left_f = np.trunc(col - 0.5)
+            top_f = np.trunc(row - 0.5)
+            dx = col - 0.5 - left_f
+            dy = row - 0.5 - top_f
+            left, top = int(left_f), int(top_f)
+            if not (left >= 1 and left + 2 < width and top >= 1 and top + 2 < height):
+                for band in range(n_bands):
+                    value = _bilinear_at(bands, band, col, row)
+                    _store(out, band, k, value, step, nodata, is_int, low, high)
+                continue
+            wx0, wx1, wx2, wx3 = _cubic_weights(dx)
+            wy0, wy1, wy2, wy3 = _cubic_weights(dy)
+            c = left - 1
+            for band in range(n_bands):
+                r = top - 1
+                # CONVOL4 along each of the four rows, then down the column
+                along = wx0 * _pixel(bands, band, r, c)
+                along += wx1 * _pixel(bands, band, r, c + 1)
+                along += wx2 * _pixel(bands, band, r, c + 2)
+                along += wx3 * _pixel(bands, band, r, c + 3)
+                value = wy0 * along
+                r += 1
+                along = wx0 * _pixel(bands, band, r, c)
+                along += wx1 * _pixel(bands, band, r, c + 1)
+                along += wx2 * _pixel(bands, band, r, c + 2)
+                along += wx3 * _pixel(bands, band, r, c + 3)
+                value += wy1 * along
+                r += 1
+                along = wx0 * _pixel(bands, band, r, c)
+                along += wx1 * _pixel(bands, band, r, c + 1)
+                along += wx2 * _pixel(bands, band, r, c + 2)
+                along += wx3 * _pixel(bands, band, r, c + 3)
+                value += wy2 * along
+                r += 1
+                along = wx0 * _pixel(bands, band, r, c)
+                along += wx1 * _pixel(bands, band, r, c + 1)
+                along += wx2 * _pixel(bands, band, r, c + 2)
+                along += wx3 * _pixel(bands, band, r, c + 3)
+                value += wy3 * along
+                _store(out, band, k, value, step, nodata, is_int, low, high)
+        landed[i] = landed_in_row
+    return landed.sum()
 
 
 def check_bands_first(image, name="image"):
@@ -448,13 +660,6 @@ def check_shape(shape, name="shape"):
     return int(values[0]), int(values[1])
 
 
-def _inside(cols, rows, width, height):
-    """GDAL's rule for a position inside a width x height image (as in :func:`interpolate`)."""
-    return ((cols >= 0) & (rows >= 0)
-            & (np.floor(cols + _GDAL_INDEX_EPSILON) < width)
-            & (np.floor(rows + _GDAL_INDEX_EPSILON) < height))
-
-
 def grid_positions(shape, transform=None, first_row=0):
     """Map coordinates of the centres of an output grid's cells.
 
@@ -478,14 +683,16 @@ def grid_positions(shape, transform=None, first_row=0):
     return a * cols + (b * rows + c), d * cols + (e * rows + f)
 
 
-def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256):
+def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
+         num_threads=1):
     """The corrected image: every output cell filled from where ``mapping`` sends it.
 
     This is the lecture's "construir uma nova imagem corrigida": the output grid
     is defined in map coordinates, ``mapping`` is the model u = f(x, y),
     v = g(x, y) from map to image coordinates, and each cell takes the value
-    interpolated at that source position. The grid is processed in strips of
-    ``strip_rows`` rows so that memory stays a small multiple of input plus output.
+    interpolated at that source position. A callable mapping is evaluated in
+    strips of ``strip_rows`` rows so that memory stays a small multiple of
+    input plus output.
 
     Parameters
     ----------
@@ -505,7 +712,11 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     nodata : number
         Value for cells whose source position is outside the image.
     strip_rows : int
-        Rows per strip.
+        Rows per strip, when ``mapping`` is a callable (an affine map is
+        evaluated pixel by pixel in the kernel, with no strips).
+    num_threads : int
+        Threads that share the output rows; 1 by default, for reproducible
+        timings. The result does not depend on it.
 
     Returns
     -------
@@ -530,33 +741,44 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     """
     image = check_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
-    check_nodata(nodata, image.dtype)
+    nodata = check_nodata(nodata, image.dtype)
+    num_threads = check_num_threads(num_threads)
     out_rows, out_cols = check_shape(shape)
     height, width = image.shape[-2:]
-    landed = False
-    spans = []
-    bands = image.shape[0] if image.ndim == 3 else None
-    out = np.empty(((bands,) if bands else ()) + (out_rows, out_cols), dtype=image.dtype)
+    bands = image.shape[0] if image.ndim == 3 else 1
+    out = np.empty((bands, out_rows, out_cols), dtype=image.dtype)
     to_map = transform if transform is not None else affine.Affine.identity()
-    for start in range(0, out_rows, strip_rows):
-        stop = min(start + strip_rows, out_rows)
-        strip = (stop - start, out_cols)
-        if isinstance(mapping, affine.Affine):
-            source_cols, source_rows = grid_positions(strip, mapping @ to_map, first_row=start)
-        else:
-            x, y = grid_positions(strip, to_map, first_row=start)
+    if isinstance(mapping, affine.Affine):
+        # an affine map: each output pixel's source position is computed in the kernel
+        to_source = np.array((mapping @ to_map)[:6], dtype=np.float64)
+        flat, landed = _resample(image, method, nodata, num_threads, _NO_POSITIONS,
+                                 _NO_POSITIONS, to_source, out_rows * out_cols, out_cols)
+        out = flat.reshape(out.shape)
+        if not landed:
+            a, b, c, d, e, f = to_source
+            x, y = np.array([0.5, out_cols - 0.5]), np.array([[0.5], [out_rows - 0.5]])
+            corner_cols, corner_rows = a * x + (b * y + c), d * x + (e * y + f)
+            spans = [(corner_cols.min(), corner_cols.max(), corner_rows.min(), corner_rows.max())]
+    else:
+        landed = 0
+        spans = []
+        for start in range(0, out_rows, strip_rows):
+            stop = min(start + strip_rows, out_rows)
+            x, y = grid_positions((stop - start, out_cols), to_map, first_row=start)
             source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
             if source.shape != (x.size, 2):
                 raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")
-            source_cols, source_rows = source[:, 0].reshape(x.shape), source[:, 1].reshape(x.shape)
-        if not landed:
-            landed = bool(_inside(source_cols, source_rows, width, height).any())
-            spans.append((source_cols.min(), source_cols.max(),
-                          source_rows.min(), source_rows.max()))
-        out[..., start:stop, :] = interpolate(image, source_cols, source_rows, method=method, nodata=nodata)
+            source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
+            strip, inside = _resample(image, method, nodata, num_threads, source_cols,
+                                      source_rows, _NO_AFFINE, x.size, out_cols)
+            out[:, start:stop, :] = strip.reshape(bands, stop - start, out_cols)
+            if not landed:
+                spans.append((source_cols.min(), source_cols.max(),
+                              source_rows.min(), source_rows.max()))
+            landed += inside
     if not landed:
         raise ValueError(_nothing_lands_message(mapping, spans, width, height))
-    return out
+    return out if image.ndim == 3 else out[0]
 
 
 def _nothing_lands_message(mapping, spans, width, height):

@@ -34,7 +34,7 @@ class ContrastPair:
 
 
 def contrast_pair(gain=0.885, offset=27.107, size=100, noise=45.0, shift=(0.7, 0.5), seed=0):
-    """A pair like paper 000's: the same 100 × 100 ground, another contrast, noise, a slight shift.
+    """A pair like the regression paper's (chapter 5): the same 100 × 100 ground, another contrast, noise, a slight shift.
 
     The ground is a crop of the real CBERS scene ``cbers_b2_A`` stretched to
     a wide range of DNs; X is it plus noise; Y is gain·ground + offset, resampled

@@ -82,6 +82,10 @@ def test_registration_of_the_synthetic_two_date_pair():
     (lambda: matching.fitness([1, 2], MESH, MESH), "one label per adjustment segment"),
     (lambda: matching.fitness([1, 2, 7], MESH, MESH), "labels must be 0"),
     (lambda: matching.genetic_match(MESH, MESH, selection="rank"), "unknown selection"),
+    (lambda: matching.fitness([1, 2, 3], MESH, MESH, variant="tight"), "unknown variant"),
+    (lambda: matching.exhaustive_match(MESH, MESH, variant="tight"), "unknown variant"),
+    (lambda: matching.true_matching([[0, 0]], [[1, 1]], tolerance=-1), "tolerance must be"),
+    (lambda: matching.fitness_comparison(sizes=(9,), seeds=[0]), "sizes must be 3 to 7"),
 ])
 def test_bad_input_is_a_clear_value_error(call, message):
     with pytest.raises(ValueError, match=message):
@@ -100,3 +104,146 @@ def test_grouping_segments_into_regions():
     assert set(np.unique(grouped.labels)) == set(range(6))
     largest = regions.keep_largest(segments, 3)
     np.testing.assert_array_equal(largest.areas, np.sort(segments.areas)[::-1][:3])
+
+
+# -- the paper's fitness rewards piling far-apart segments; the compact variant does not ----------
+
+REFERENCE3 = matching.Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
+# adjustment segment 4 is a separate forest 100 m from segment 3, which is short of area
+PILED = matching.Mesh([[0, 0], [100, 0], [0, 100], [100, 100]], [50, 80, 60, 60])
+
+
+def test_paper_fitness_prefers_piling_a_far_segment_onto_one_short_of_area():
+    piled = matching.fitness([1, 2, 3, 3], REFERENCE3, PILED)
+    honest = matching.fitness([1, 2, 3, 0], REFERENCE3, PILED)
+    assert piled > honest + 0.05       # the flaw: 0.939 against 0.880
+    best = matching.exhaustive_match(REFERENCE3, PILED, one_to_one=False)
+    np.testing.assert_array_equal(best.solution, [1, 2, 3, 3])
+
+
+def test_compact_fitness_leaves_a_far_segment_unmatched():
+    piled = matching.fitness([1, 2, 3, 3], REFERENCE3, PILED, variant="compact")
+    honest = matching.fitness([1, 2, 3, 0], REFERENCE3, PILED, variant="compact")
+    assert honest == pytest.approx(matching.fitness([1, 2, 3, 0], REFERENCE3, PILED))
+    # a non-compact group costs S_R + S_G = 240 of 250 in DMS and leaves the layout term
+    assert piled == pytest.approx(0.5 * (1 - 240 / 250) + 0.5 * 1.0)
+    best = matching.exhaustive_match(REFERENCE3, PILED, one_to_one=False, variant="compact")
+    np.testing.assert_array_equal(best.solution, [1, 2, 3, 0])
+    ga = matching.genetic_match(REFERENCE3, PILED, seed=0, generations=60, variant="compact")
+    np.testing.assert_array_equal(ga.solution, [1, 2, 3, 0])
+
+
+def test_compact_fitness_keeps_a_forest_split_in_two():
+    # reference segment 1 seen as its two halves: centroids 4r/(3π) from its centre
+    radius = np.sqrt(400 / np.pi)
+    half = 4 * radius / (3 * np.pi)
+    split = matching.Mesh([[-half, 0], [half, 0], [100, 0], [0, 100]], [200, 200, 80, 120])
+    reference = matching.Mesh([[0, 0], [100, 0], [0, 100]], [400, 80, 120])
+    spread = matching.group_spread([1, 1, 2, 3], split)
+    assert spread[0] == pytest.approx(0.86, abs=0.01)
+    np.testing.assert_allclose(spread[1:], 1.0)
+    for variant in matching.VARIANTS:
+        assert matching.fitness([1, 1, 2, 3], reference, split, variant=variant) == pytest.approx(1.0)
+
+
+def test_group_spread_of_two_touching_disks_is_one_and_a_half():
+    radius = np.sqrt(100 / np.pi)
+    touching = matching.Mesh([[0, 0], [2 * radius, 0], [0, 500]], [100, 100, 100])
+    assert matching.group_spread([1, 1, 2], touching)[0] == pytest.approx(1.5)
+    assert np.isnan(matching.group_spread([1, 1, 0], touching, m=3)[1])
+
+
+def test_both_variants_agree_without_many_to_one_groups():
+    reference, adjustment, truth = synthetic.synthetic_meshes(6, seed=2)
+    rng = np.random.default_rng(0)
+    solutions = np.array([rng.permutation(6) + 1 for _ in range(50)] + [truth])
+    np.testing.assert_allclose(matching.fitness_batch(solutions, reference, adjustment),
+                               matching.fitness_batch(solutions, reference, adjustment, variant="compact"))
+
+
+def test_compact_fitness_finds_the_truth_where_the_paper_piles_onto_a_shrunk_segment():
+    # the chapter's 31 % case at a = 0.7: the paper's optimum piles two segments onto one
+    reference, shrunk, truth = synthetic.synthetic_meshes(5, seed=0, shrink=(2, 0.31))
+    paper = matching.exhaustive_match(reference, shrunk, 0.7, one_to_one=False)
+    compact = matching.exhaustive_match(reference, shrunk, 0.7, one_to_one=False, variant="compact")
+    assert not np.array_equal(paper.solution, truth)
+    assert len(np.unique(paper.solution)) < len(truth)         # a many-to-one group
+    np.testing.assert_array_equal(compact.solution, truth)
+
+
+def test_exhaustive_search_tries_every_solution_in_order():
+    reference = matching.Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
+    # all 4^3 solutions score the same on a degenerate alpha: the first, [0, 0, 0], is kept
+    flat = matching.exhaustive_match(reference, reference, alpha=0.0, one_to_one=False, batch=7)
+    assert flat.evaluations == 4**3
+    best = matching.exhaustive_match(reference, reference, one_to_one=False, batch=7)
+    np.testing.assert_array_equal(best.solution, [1, 2, 3])
+    one_to_one = matching.exhaustive_match(reference, reference, one_to_one=True, batch=4)
+    assert one_to_one.evaluations == 6
+    np.testing.assert_array_equal(one_to_one.solution, [1, 2, 3])
+
+
+def test_true_matching_by_the_known_transform():
+    solution, distance = matching.true_matching([[0, 0], [10, 0], [0, 10]],
+                                                [[0.5, 9], [10, 1], [40, 40]], tolerance=2)
+    np.testing.assert_array_equal(solution, [3, 2, 0])
+    np.testing.assert_allclose(distance, [np.hypot(0.5, 1), 1, np.hypot(40, 30)])
+
+
+def real_scene():
+    """Chapter 6's real scene (as benchmarks/matching.py builds it)."""
+    import affine
+
+    from rsgeo import data, resample
+
+    ccd = data.load("cbers2b_rgb342")
+    vegetation = regions.ndvi(ccd.array[0], ccd.array[1])
+    centre = ccd.transform @ (ccd.shape[1] / 2, ccd.shape[0] / 2)
+    moved = (affine.Affine.translation(centre[0] + 150, centre[1] - 90) @ affine.Affine.rotation(5)
+             @ affine.Affine(30, 0, -106 * 30, 0, -30, 106 * 30))
+    image = resample.warp(vegetation, ~ccd.transform, (212, 212), moved, method="bilinear", nodata=-1.0)
+    reference = regions.keep_largest(regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
+    adjustment = regions.keep_largest(regions.forest_segments(image, threshold=0.55, min_area=11), 8)
+    to_reference = ~ccd.transform @ moved
+    mapped = np.column_stack(to_reference @ (adjustment.centroids[:, 0], adjustment.centroids[:, 1]))
+    return ccd, reference, adjustment, mapped
+
+
+def test_real_scene_the_paper_piles_and_the_compact_fitness_does_not():
+    ccd, reference, adjustment, mapped = real_scene()
+    truth, distance = matching.true_matching(reference.centroids, mapped, tolerance=10)
+    np.testing.assert_array_equal(truth, [1, 2, 3, 4, 5, 8, 0, 0])
+    assert distance[6] > 25 and distance[7] > 50
+    reference_mesh = matching.Mesh(reference.centroids, reference.areas, pixel_size=20)
+    adjustment_mesh = matching.Mesh(adjustment.centroids, adjustment.areas, pixel_size=30)
+    piled = [1, 2, 3, 4, 5, 8, 1, 1]
+    assert matching.fitness(piled, reference_mesh, adjustment_mesh) > matching.fitness(
+        truth, reference_mesh, adjustment_mesh)
+    assert matching.fitness(piled, reference_mesh, adjustment_mesh, variant="compact") < matching.fitness(
+        truth, reference_mesh, adjustment_mesh, variant="compact")
+    paper = matching.register_by_regions(reference, adjustment, ccd.transform, 20, 30, seed=0)
+    compact = matching.register_by_regions(reference, adjustment, ccd.transform, 20, 30, seed=0,
+                                           variant="compact")
+    np.testing.assert_array_equal(paper.match.solution, piled)
+    np.testing.assert_array_equal(compact.match.solution, truth)
+    assert compact.kept.sum() >= 5 and compact.rms_kept < 1.0
+
+
+def test_evolution_frame_spans_the_whole_run_from_the_first_generation():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rsgeo.plot import figure_problems
+    from rsgeo.widgets import draw_evolution_frame
+
+    reference, adjustment, truth = synthetic.synthetic_meshes(5, seed=1)
+    run = matching.genetic_match(reference, adjustment, seed=0, generations=20)
+    figure = draw_evolution_frame(reference, adjustment, truth, run.history[:1], generations=20)
+    evolution = figure.axes[1]
+    assert evolution.get_xlim()[1] >= 19 and evolution.get_xlim()[0] <= 0
+    assert figure_problems(figure) == []
+    with pytest.raises(ValueError, match="at least one generation"):
+        draw_evolution_frame(reference, adjustment, truth, [])
+    plt.close(figure)

@@ -1,6 +1,7 @@
 """rsgeo.resample against GDAL, bit for bit, plus properties and errors."""
 
 import affine
+import numba
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -213,3 +214,99 @@ def test_bands_first_images_are_accepted(shape):
 def test_warp_shape_must_be_rows_cols(shape):
     with pytest.raises(ValueError, match=r"shape must be \(rows, cols\)"):
         warp(np.zeros((4, 4), dtype=np.uint8), affine.Affine.identity(), shape)
+
+
+# -- the Numba kernels: threads, the affine path, dtypes ------------------------
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("dtype", ["uint8", "int16", "float32"])
+def test_affine_warp_computes_positions_like_grid_positions(method, dtype):
+    # warp evaluates an affine map pixel by pixel inside the kernel; it must give
+    # exactly what interpolate gives at grid_positions' positions (the GDAL-checked path),
+    # including the edges, nodata outside and several bands
+    image = noise((2, 60, 70), dtype, seed=4)
+    mapping = (affine.Affine.translation(-5.3, 3.1) @ affine.Affine.rotation(11)
+               @ affine.Affine.scale(1.1, 0.9))
+    shape = (64, 77)
+    cols, rows = grid_positions(shape, mapping)
+    expected = interpolate(image, cols, rows, method, nodata=7)
+    got = warp(image, mapping, shape, method=method, nodata=7)
+    assert (expected == 7).any() and (expected != 7).any()     # both inside and outside
+    assert np.array_equal(got, expected)
+
+
+@pytest.mark.skipif(numba.config.NUMBA_NUM_THREADS < 2, reason="Numba may use one thread here")
+@pytest.mark.parametrize("method", METHODS)
+def test_two_threads_give_the_same_pixels_as_one(method):
+    image = noise((3, 80, 90), "int16", seed=6)
+    mapping = affine.Affine.rotation(4) @ affine.Affine.scale(0.9)
+    one = warp(image, mapping, (85, 95), method=method, num_threads=1)
+    two = warp(image, mapping, (85, 95), method=method, num_threads=2)
+    assert np.array_equal(one, two)
+    cols, rows = grid_positions((85, 95), mapping)
+    assert np.array_equal(interpolate(image, cols, rows, method, num_threads=2), one)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_a_long_list_of_positions_equals_the_same_positions_as_a_grid(method):
+    # a 1-D list is cut into blocks of rows for the threads: the last, partial block too
+    image = noise((40, 50), seed=8)
+    rng = np.random.default_rng(8)
+    cols, rows = rng.uniform(-3, 53, (2, 101, 97))
+    grid = interpolate(image, cols, rows, method, num_threads=2)
+    listed = interpolate(image, cols.ravel(), rows.ravel(), method, num_threads=2)
+    assert np.array_equal(listed, grid.ravel())
+    assert interpolate(image, np.array([]), np.array([]), method).shape == (0,)
+    assert interpolate(image, 10.2, 20.7, method).shape == ()
+
+
+@pytest.mark.parametrize("dtype", ["float16", ">u2", ">f8"])
+def test_dtypes_numba_does_not_compute_in_still_work(dtype):
+    # float16 is computed in float32; big-endian images in native byte order
+    image = noise((30, 40), "uint16" if "u" in dtype else "float32", seed=9)
+    cols, rows = np.meshgrid(np.linspace(-1, 41, 33), np.linspace(-1, 31, 25))
+    for method in METHODS:
+        got = interpolate(image.astype(dtype), cols, rows, method, nodata=0)
+        native = image.astype(np.dtype(dtype).newbyteorder("="))
+        expected = interpolate(image if dtype == "float16" else native, cols, rows, method,
+                               nodata=0)
+        assert got.dtype == np.dtype(dtype)
+        if dtype == "float16":
+            np.testing.assert_allclose(got, expected.astype(np.float16), rtol=1e-2)
+        else:
+            assert np.array_equal(got, expected)
+
+
+def test_bilinear_edge_and_cubic_fallback_read_no_pixel_outside_the_image():
+    # on a 2 x 2 image every position is at an edge: bilinear renormalises the
+    # weights of the pixels that exist, cubic falls back to bilinear
+    image = np.array([[10.0, 20.0], [30.0, 40.0]])
+    cols = np.array([0.25, 1.0, 1.75, 0.0, 1.999])
+    rows = np.array([0.25, 1.0, 1.75, 1.5, 0.5])
+    expected = [10.0, 25.0, 40.0, 30.0, 20.0]
+    for method in ("bilinear", "cubic"):
+        np.testing.assert_allclose(interpolate(image, cols, rows, method, nodata=-1), expected)
+
+
+@pytest.mark.parametrize("num_threads", [0, -1, 1.5, "2", None, 10**6])
+def test_num_threads_must_be_a_whole_number_within_numba_s_threads(num_threads):
+    image = np.zeros((4, 4), dtype=np.uint8)
+    with pytest.raises(ValueError, match="num_threads must be a whole number from 1 to"):
+        interpolate(image, [1.0], [1.0], num_threads=num_threads)
+    with pytest.raises(ValueError, match="num_threads must be a whole number from 1 to"):
+        warp(image, affine.Affine.identity(), (4, 4), num_threads=num_threads)
+
+
+def test_avoid_nodata_on_every_integer_edge_case():
+    # a valid interpolated value equal to nodata steps away from it: down, or up from the
+    # dtype's minimum; nearest copies values as they are
+    image = np.full((6, 6), 5, dtype=np.int16)
+    assert interpolate(image, [3.0], [3.0], "bilinear", nodata=5)[0] == 4
+    assert interpolate(image, [3.0], [3.0], "cubic", nodata=5)[0] == 4
+    assert interpolate(image, [3.0], [3.0], "nearest", nodata=5)[0] == 5
+    low = np.full((6, 6), -32768, dtype=np.int16)
+    assert interpolate(low, [3.0], [3.0], "cubic", nodata=-32768)[0] == -32767
+    floats = np.full((6, 6), 2.5, dtype=np.float32)
+    assert interpolate(floats, [3.0], [3.0], "bilinear", nodata=2.5)[0] == np.nextafter(
+        np.float32(2.5), np.float32(np.inf))
