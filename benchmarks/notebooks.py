@@ -12,7 +12,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tests"))
-from conftest import execute_notebook  # noqa: E402
+from notebook_runner import execute_notebook  # noqa: E402
 
 if __name__ == "__main__":
     paths = [Path(p) for p in sys.argv[1:]] or (sorted((ROOT / "book").glob("*.ipynb"))

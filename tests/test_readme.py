@@ -10,7 +10,7 @@ import time
 import urllib.request
 from pathlib import Path
 
-from conftest import ROOT
+from notebook_runner import ROOT
 
 
 def readme_blocks():
@@ -78,3 +78,10 @@ def test_the_repository_holds_no_symbolic_link():
                              check=True).stdout
     links = [line.split("\t")[1] for line in listing.splitlines() if line.startswith("120000")]
     assert not links, links
+
+
+def test_no_test_imports_from_conftest():
+    # pytest imports conftest.py itself; shared helpers live in tests/notebook_runner.py
+    offenders = [path.name for path in (ROOT / "tests").glob("*.py")
+                 if re.search(r"^\s*(from conftest import|import conftest)", path.read_text(), flags=re.M)]
+    assert not offenders, offenders

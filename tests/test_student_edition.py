@@ -13,7 +13,7 @@ import nbformat
 import pytest
 from nbclient.exceptions import CellExecutionError
 
-from conftest import ROOT, execute_notebook
+from notebook_runner import ROOT, execute_notebook
 
 sys.path.insert(0, str(ROOT / "exercises"))
 from make_student_edition import BEGIN, make_student_edition, strip_solutions  # noqa: E402
