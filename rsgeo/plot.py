@@ -4,8 +4,15 @@ Kept apart from the core modules so that rsgeo's maths never imports matplotlib.
 """
 
 import re
+import weakref
 
 import numpy as np
+
+__all__ = [
+    "FIGURE_PROBLEMS", "show_image", "grid_path", "draw_grid", "draw_mesh",
+    "draw_neighbour_weights", "draw_stretch_frame", "fix_layout", "animation_html",
+    "figure_problems", "audit_rendered_figures", "label_points", "draw_residual_arrows",
+]
 
 
 def _pyplot():
@@ -50,31 +57,103 @@ def show_image(ax, image, transform=None, title="", cmap="gray", label="DN", vmi
     return artist
 
 
-def draw_grid(ax, lines, **style):
-    """Draw grid lines given as (cols, rows) pairs (e.g. from rsgeo.distortion.distorted_grid)."""
-    style = {"color": "tab:blue", "linewidth": 0.8, **style}
+def grid_path(lines):
+    """Grid lines as one polyline: (cols, rows) arrays with NaN between lines.
+
+    One Line2D for a whole grid draws several times faster than one per line,
+    and a widget moves it with a single ``set_data``.
+
+    Parameters
+    ----------
+    lines : sequence of (cols, rows) pairs
+        As :func:`rsgeo.distortion.distorted_grid` returns them.
+
+    Returns
+    -------
+    cols, rows : ndarray
+        1-D, NaN-separated (the NaN breaks the line between grid lines).
+
+    Raises
+    ------
+    ValueError
+        If there are no lines or a line's cols and rows differ in length.
+
+    Examples
+    --------
+    >>> cols, rows = grid_path([([0, 1], [0, 0]), ([0, 1], [1, 1])])
+    >>> cols.tolist()[:3], len(rows)
+    ([0.0, 1.0, nan], 6)
+    """
+    parts_c, parts_r = [], []
     for cols, rows in lines:
-        ax.plot(cols, rows, **style)
+        cols, rows = np.asarray(cols, dtype=float).ravel(), np.asarray(rows, dtype=float).ravel()
+        if cols.shape != rows.shape:
+            raise ValueError(f"each grid line needs as many cols as rows, got {cols.size} and {rows.size}")
+        parts_c += [cols, [np.nan]]
+        parts_r += [rows, [np.nan]]
+    if not parts_c:
+        raise ValueError("grid_path needs at least one (cols, rows) line")
+    return np.concatenate(parts_c), np.concatenate(parts_r)
+
+
+def draw_grid(ax, lines, **style):
+    """Draw grid lines given as (cols, rows) pairs (e.g. from rsgeo.distortion.distorted_grid).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    lines : sequence of (cols, rows) pairs
+    **style
+        Line2D properties (default: thin blue lines).
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+        The whole grid as one line (see :func:`grid_path`): move it with
+        ``line.set_data(*grid_path(new_lines))``.
+    """
+    style = {"color": "tab:blue", "linewidth": 0.8, **style}
+    (line,) = ax.plot(*grid_path(lines), **style)
     ax.set_aspect("equal")
+    return line
 
 
 def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
-    """A relational mesh: centroids joined by their distances (the GA paper, fig. 4)."""
-    centroids = np.asarray(centroids)
-    if edges:
-        for i in range(len(centroids)):
-            for j in range(i + 1, len(centroids)):
-                ax.plot(*centroids[[i, j]].T, color=color, alpha=0.25, linewidth=0.7)
-    ax.scatter(*centroids.T, s=40, color=color, edgecolor="black", zorder=3)
+    """A relational mesh: centroids joined by their distances (the GA paper, fig. 4).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    centroids : (n, 2) array_like
+    labels : sequence, optional
+        A label per centroid (default 1 to n).
+    color : colour
+    edges : bool
+        Join every pair of centroids (one LineCollection).
+
+    Returns
+    -------
+    matplotlib.collections.PathCollection
+        The centroids' markers.
+    """
+    from matplotlib.collections import LineCollection
+
+    centroids = np.asarray(centroids, dtype=float)
+    if edges and len(centroids) > 1:
+        i, j = np.triu_indices(len(centroids), k=1)
+        ax.add_collection(LineCollection(np.stack([centroids[i], centroids[j]], axis=1), colors=color,
+                                         alpha=0.25, linewidths=0.7))
+    points = ax.scatter(*centroids.T, s=40, color=color, edgecolor="black", zorder=3)
     for k, (x, y) in enumerate(centroids):
         ax.annotate(str(labels[k] if labels is not None else k + 1), (x, y), xytext=(4, 4),
                     textcoords="offset points", fontsize=9, weight="bold")
+    return points
 
 
 def draw_neighbour_weights(ax, position, method):
     """The pixels a bilinear or cubic interpolation uses around a position, sized by their weight.
 
-    Circle area is proportional to |weight|, red for negative weights (cubic
+    Circle area is proportional to ``|weight|``, red for negative weights (cubic
     convolution's lobes); the cross is the position, in GDAL's (col, row).
     """
     from .resample import bilinear_weights, keys_weights
@@ -100,6 +179,9 @@ def draw_neighbour_weights(ax, position, method):
     ax.set_aspect("equal")
 
 
+_STRETCH_ARTISTS = weakref.WeakKeyDictionary()   # first Axes of a stretch frame -> its artists
+
+
 def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
     """One frame of the regression stretch: mosaic, histograms, scatter with the line (chapter 5).
 
@@ -109,6 +191,11 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
     whole overlap: the brightness step (difference of the means) and the
     contrast mismatch (difference of the standard deviations), in DN, the
     measures chapter 5's text uses.
+
+    The first call on a set of axes draws every artist; later calls with the
+    same images update them in place (image data, one histogram, the line,
+    the titles), so that animation and widget frames draw fast. Axes cleared
+    in between, or other images, are drawn afresh.
 
     Parameters
     ----------
@@ -126,32 +213,103 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
     -------
     dict
         The seam metrics shown in the title.
+
+    Raises
+    ------
+    ValueError
+        If ``axes`` are not three Axes (image problems raise as in
+        :func:`rsgeo.radiometry.apply_gain_offset`).
     """
     from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 
+    axes = list(np.ravel(axes))
+    if len(axes) != 3:
+        raise ValueError(f"draw_stretch_frame needs three axes (mosaic, histograms, scatter), got {len(axes)}")
     gain_t, offset_t = 1 + t * (gain - 1), t * offset
-    corrected = apply_gain_offset(x_image, gain_t, offset_t)
-    mosaic, split = concatenate_halves(corrected, y_image)
-    metrics = seam_metrics(corrected, y_image)
+    artists = _STRETCH_ARTISTS.get(axes[0])
+    if (artists is not None and (artists["x_image"] is not x_image or artists["y_image"] is not y_image
+                                 or any(artist.axes is not ax or artist not in ax.get_children()
+                                        for artist, ax in zip(artists["owned"], axes)))):
+        artists = None
+    # a frame's inputs depend on (gain(t), offset(t)) only: kept, Play's next loop is free
+    frames = artists["frames"] if artists is not None else {}
+    key = (float(gain_t), float(offset_t))
+    if key not in frames:
+        if len(frames) >= 512:
+            frames.clear()
+        corrected = apply_gain_offset(x_image, gain_t, offset_t)
+        mosaic, split = concatenate_halves(corrected, y_image)
+        counts, _ = np.histogram(corrected, np.arange(257))
+        frames[key] = (mosaic, split, counts, seam_metrics(corrected, y_image))
+    mosaic, split, counts, metrics = frames[key]
+    if artists is None:
+        artists = _draw_stretch_axes(axes, x_image, y_image, mosaic, split, counts, np.arange(257))
+        artists["frames"] = frames
+        _STRETCH_ARTISTS[axes[0]] = artists
+    artists["mosaic"].set_data(mosaic)
+    artists["histogram"].set_data(counts)
+    axes[1].set_ylim(0, 1.05 * max(counts.max(), artists["b_peak"]))
+    artists["line"].set_ydata(gain_t * np.array([0, 255]) + offset_t)
+    # y=1: a fixed title position, not re-derived from the tick labels at every frame
+    axes[0].set_title(f"t = {t:.1f}: mean Δ {metrics['mean_difference']:+.1f} DN, "
+                      f"spread Δ {metrics['std_difference']:+.1f} DN", y=1.0)
+    axes[2].set_title(f"Y = {gain_t:.3f} X + {offset_t:.2f}{title_extra}", y=1.0)
+    return dict(metrics)
+
+
+def _draw_stretch_axes(axes, x_image, y_image, mosaic, split, counts, bins):
+    """Draw a stretch frame's artists once (see :func:`draw_stretch_frame`)."""
     for ax in axes:
         ax.clear()
-    axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
+    mosaic_artist = axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
     axes[0].axvline(split - 0.5, color="tab:red", linewidth=0.8)
-    axes[0].set(title=f"t = {t:.1f}: mean Δ {metrics['mean_difference']:+.1f} DN, "
-                      f"spread Δ {metrics['std_difference']:+.1f} DN",
-                xlabel="column (px)", ylabel="row (px)")
-    bins = np.arange(257)
-    # one polygon per histogram (histtype="stepfilled"), not 256 bars: a frame draws fast
-    axes[1].hist(corrected.ravel(), bins, alpha=0.6, label="A stretched", histtype="stepfilled")
-    axes[1].hist(np.asarray(y_image).ravel(), bins, alpha=0.6, label="B", histtype="stepfilled")
-    axes[1].set(title="histograms (1 DN bins)", xlabel="DN", ylabel="count (pixels)")
+    axes[0].set(xlabel="column (px)", ylabel="row (px)")
+    # one filled step polygon per histogram, not 256 bars: a frame draws fast
+    histogram = axes[1].stairs(counts, bins, fill=True, alpha=0.6, label="A stretched",
+                               color="tab:blue")
+    b_counts, _ = np.histogram(np.asarray(y_image), bins)
+    axes[1].stairs(b_counts, bins, fill=True, alpha=0.6, label="B", color="tab:orange")
+    axes[1].set_title("histograms (1 DN bins)", y=1.0)
+    axes[1].set(xlabel="DN", ylabel="count (pixels)", xlim=(0, 256))
     axes[1].legend()
     axes[2].scatter(np.ravel(x_image)[::5], np.ravel(y_image)[::5], s=2, alpha=0.3)
-    line = np.array([0, 255])
-    axes[2].plot(line, gain_t * line + offset_t, color="tab:red")
-    axes[2].set(title=f"Y = {gain_t:.3f} X + {offset_t:.2f}{title_extra}", xlabel="A = X (DN)",
-                ylabel="B = Y (DN)", xlim=(0, 255), ylim=(0, 255))
-    return metrics
+    (line,) = axes[2].plot([0, 255], [0, 255], color="tab:red")
+    axes[2].set(xlabel="A = X (DN)", ylabel="B = Y (DN)", xlim=(0, 255), ylim=(0, 255))
+    return {"x_image": x_image, "y_image": y_image, "mosaic": mosaic_artist, "histogram": histogram,
+            "line": line, "b_peak": int(b_counts.max()), "owned": (mosaic_artist, histogram, line)}
+
+
+def fix_layout(figure):
+    """Lay a figure out tightly once, leaving no layout engine behind.
+
+    ``figure.tight_layout()`` leaves a placeholder layout engine, and with any
+    engine set every save draws the figure twice (once to lay it out). Frames
+    of widgets and animations keep one layout: this sets it once, so that each
+    frame is drawn once.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The same figure, its subplot parameters adjusted.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from matplotlib.figure import Figure
+    >>> figure = Figure()
+    >>> _ = figure.subplots(1, 2)
+    >>> fix_layout(figure).get_layout_engine() is None
+    True
+    """
+    from matplotlib.layout_engine import TightLayoutEngine
+
+    TightLayoutEngine().execute(figure)
+    return figure
 
 
 def animation_html(animation):
@@ -269,7 +427,7 @@ def audit_rendered_figures():
     """Record :func:`figure_problems` of every figure as it is rendered (shown, saved, animated).
 
     The tests call this at the top of every notebook they execute and fail on
-    anything in :data:`FIGURE_PROBLEMS`; it patches matplotlib's
+    anything in ``FIGURE_PROBLEMS``; it patches matplotlib's
     ``FigureCanvasBase.print_figure`` for the running process only.
     """
     from matplotlib.backend_bases import FigureCanvasBase

@@ -3,12 +3,32 @@
 Each function returns a widget to display as a notebook cell's last value.
 In the HTML book the widgets keep the state saved at build time; in Jupyter or
 Colab they redraw live.
+
+Every widget answers at once: it builds its figure once, and a control's
+change updates that figure's artists in place (``set_data``, ``set_offsets``,
+bar heights, titles) and puts a new PNG of the same figure in the widget's
+``ipywidgets.Output``. Expensive inputs (fitted models, GA runs) are computed
+once and kept. The box a widget function returns carries that figure as its
+``figure`` attribute (``benchmarks/widgets.py`` times every control).
 """
+
+import base64
+import io
+import weakref
 
 import numpy as np
 
 from . import distortion, gcp, matching, radiometry
-from .plot import draw_grid, draw_mesh, draw_stretch_frame
+from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
+
+__all__ = [
+    "DPI", "render_png", "distortion_explorer", "gcp_explorer", "regression_stretch",
+    "ga_evolution", "draw_evolution_frame",
+]
+
+#: Resolution of a widget's PNG frames (dots per inch): the figures are 9 to 13 inches wide,
+#: 720 to 1040 pixels, about the width of the book's page.
+DPI = 80
 
 
 def _pyplot():
@@ -17,18 +37,116 @@ def _pyplot():
     return plt
 
 
+def _widget_figure(figsize):
+    """A figure a widget keeps and redraws.
+
+    Under Jupyter's inline (or ipympl) backend it is released from pyplot at
+    once, so that the cell does not show it a second time below the widget;
+    elsewhere (scripts, tests on Agg) it stays pyplot's current figure.
+    """
+    import matplotlib
+
+    plt = _pyplot()
+    figure = plt.figure(figsize=figsize)
+    backend = matplotlib.get_backend().lower()
+    if any(name in backend for name in ("inline", "ipympl", "widget")):
+        plt.close(figure)
+    return figure
+
+
+def render_png(figure, dpi=DPI):
+    """A figure as PNG bytes, as a widget shows it.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+    dpi : float
+        Dots per inch (default :data:`DPI`).
+
+    Returns
+    -------
+    bytes
+        The PNG file's content.
+
+    Raises
+    ------
+    ValueError
+        If ``dpi`` is not a positive number.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from matplotlib.figure import Figure
+    >>> render_png(Figure(figsize=(1, 1)), dpi=10)[:4]
+    b'\\x89PNG'
+    """
+    if not (isinstance(dpi, (int, float)) and dpi > 0):
+        raise ValueError(f"dpi must be a positive number, got {dpi!r}")
+    buffer = io.BytesIO()
+    # zlib level 1: faster to encode than the default (6), and these frames come out no larger
+    figure.savefig(buffer, format="png", dpi=dpi, pil_kwargs={"compress_level": 1})
+    return buffer.getvalue()
+
+
+def _show(output, figure):
+    """Replace the output's content with a PNG of the figure (one trait change, no flicker)."""
+    png = base64.b64encode(render_png(figure)).decode("ascii")
+    output.outputs = ({"output_type": "display_data",
+                       "data": {"image/png": png, "text/plain": "<rsgeo widget frame>"},
+                       "metadata": {}},)
+
+
+def _live(box, output, figure, update, controls):
+    """Draw once (with the layout), then redraw on every control's change; return ``box``."""
+
+    def redraw(change=None):
+        try:
+            update()
+        except Exception as error:
+            output.outputs = ({"output_type": "stream", "name": "stderr",
+                               "text": f"{type(error).__name__}: {error}\n"},)
+            raise
+        _show(output, figure)
+
+    update()
+    fix_layout(figure)           # once: every frame keeps the same layout
+    _show(output, figure)
+    for control in controls:
+        control.observe(redraw, names="value")
+    box.figure = figure
+    return box
+
+
 def distortion_explorer(shape=(300, 300)):
     """Sliders for latitude, roll, pitch, yaw (constant and varying) and scan angle.
 
-    The left panel redraws the true grid where a distorted image records it (a
+    The left panel shows the true grid where a distorted image records it (a
     narrow-field scene: roll and pitch, in pixels of angle, are uniform shifts;
     the Earth-rotation skew of a descending pass puts each line's ground west of
     the line before); the right one the pixel size at the chosen scan angle for
-    a MODIS-like sensor.
+    a MODIS-like sensor. A change moves the grid line and the two markers.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Rows and columns of the image whose grid is drawn.
+
+    Returns
+    -------
+    ipywidgets.VBox
+        With ``figure``, the matplotlib Figure it updates.
+
+    Raises
+    ------
+    ValueError
+        If ``shape`` is not two positive integers.
     """
     import ipywidgets as widgets
 
-    plt = _pyplot()
+    if len(shape) != 2 or min(int(n) for n in shape) < 1:
+        raise ValueError(f"shape must be two positive integers (rows, cols), got {shape!r}")
+    shape = (int(shape[0]), int(shape[1]))
     controls = {
         "latitude": widgets.FloatSlider(value=-23.0, min=-80, max=80, step=1, description="latitude °"),
         "roll": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="roll (px)"),
@@ -38,61 +156,100 @@ def distortion_explorer(shape=(300, 300)):
                                         description="yaw °/line"),
         "scan": widgets.FloatSlider(value=30.0, min=0, max=60, step=1, description="scan angle °"),
     }
+    figure = _widget_figure((11, 4.5))
+    left, right = figure.subplots(1, 2)
+    nominal = distortion.distorted_grid(distortion.SystematicDistortion(), shape, 50)
+    draw_grid(left, nominal, color="lightgray")
+    grid = draw_grid(left, nominal)
+    left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel="column (pixels)",
+             ylabel="row (pixels)")
+    angles = np.linspace(0, 60, 121)
+    along, across = distortion.pixel_size(angles, 705.0)
+    right.plot(angles, along, label="along track")
+    right.plot(angles, across, label="across track")
+    marks = right.scatter([0, 0], [1, 1], color="black", zorder=3)
+    right.set(xlabel="scan angle (degrees)", ylabel="pixel size (km), 1 km at nadir")
+    right.legend()
 
-    def draw(latitude, roll, pitch, yaw, yaw_rate, scan):
+    def update():
+        value = {name: float(control.value) for name, control in controls.items()}
         # skew of a 185 km Landsat frame, expressed per line of a 300-line image
-        skew_km = distortion.earth_rotation_skew(latitude)
-        model = distortion.SystematicDistortion(skew_per_line=skew_km / 185.0, roll_px=roll, pitch_px=pitch,
-                                                yaw_deg=yaw, yaw_rate_deg_per_line=yaw_rate)
-        figure, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5))
-        draw_grid(left, distortion.distorted_grid(distortion.SystematicDistortion(), shape, 50),
-                  color="lightgray")
-        draw_grid(left, distortion.distorted_grid(model, shape, 50))
-        left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel="column (pixels)",
-                 ylabel="row (pixels)", title=f"grid as recorded (last line {skew_km:.1f} km west per 185 km)")
-        angles = np.linspace(0, 60, 121)
-        along, across = distortion.pixel_size(angles, 705.0)
-        right.plot(angles, along, label="along track")
-        right.plot(angles, across, label="across track")
-        a, c = distortion.pixel_size(scan, 705.0)
-        right.scatter([scan, scan], [a, c], color="black", zorder=3)
-        right.set(xlabel="scan angle (degrees)", ylabel="pixel size (km), 1 km at nadir",
-                  title=f"MODIS-like, 705 km: {float(a):.2f} × {float(c):.2f} km at {scan:.0f}°")
-        right.legend()
-        plt.show()
+        skew_km = distortion.earth_rotation_skew(value["latitude"])
+        model = distortion.SystematicDistortion(
+            skew_per_line=skew_km / 185.0, roll_px=value["roll"], pitch_px=value["pitch"],
+            yaw_deg=value["yaw"], yaw_rate_deg_per_line=value["yaw_rate"])
+        grid.set_data(*grid_path(distortion.distorted_grid(model, shape, 50)))
+        left.set_title(f"grid as recorded (last line {skew_km:.1f} km west per 185 km)", y=1.0)
+        a, c = distortion.pixel_size(value["scan"], 705.0)
+        marks.set_offsets([[value["scan"], float(a)], [value["scan"], float(c)]])
+        right.set_title(f"MODIS-like, 705 km: {float(a):.2f} × {float(c):.2f} km at {value['scan']:.0f}°",
+                        y=1.0)
 
-    output = widgets.interactive_output(draw, controls)
-    return widgets.VBox([widgets.HBox(list(controls.values())[:3]), widgets.HBox(list(controls.values())[3:]),
-                         output])
+    output = widgets.Output()
+    box = widgets.VBox([widgets.HBox(list(controls.values())[:3]), widgets.HBox(list(controls.values())[3:]),
+                        output])
+    return _live(box, output, figure, update, controls.values())
 
 
 def gcp_explorer(gcps, order=1, index=0):
-    """Move one GCP's image position with sliders and watch residuals and RMS change."""
+    """Move one GCP's image position with sliders and watch residuals and RMS change.
+
+    Parameters
+    ----------
+    gcps : rsgeo.gcp.GCPSet
+    order : int
+        Polynomial degree shown first (1 to 3).
+    index : int
+        The GCP moved first (0-based).
+
+    Returns
+    -------
+    ipywidgets.VBox
+        With ``figure``, the matplotlib Figure it updates: one bar per GCP
+        (the moved one red), the RMS as a dashed line.
+
+    Raises
+    ------
+    ValueError
+        If ``order`` is not 1, 2 or 3 or ``index`` names no GCP.
+    """
     import ipywidgets as widgets
 
-    plt = _pyplot()
+    if order not in (1, 2, 3):
+        raise ValueError(f"order must be 1, 2 or 3, got {order!r}")
+    if not 0 <= int(index) < len(gcps):
+        raise ValueError(f"index must name one of the {len(gcps)} GCPs (0 to {len(gcps) - 1}), got {index}")
     dcol = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δcol (px)")
     drow = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δrow (px)")
-    which = widgets.Dropdown(options=[(name, i) for i, name in enumerate(gcps.ids)], value=index, description="GCP")
+    which = widgets.Dropdown(options=[(name, i) for i, name in enumerate(gcps.ids)], value=int(index),
+                             description="GCP")
     degree = widgets.Dropdown(options=[1, 2, 3], value=order, description="degree")
+    figure = _widget_figure((9, 3.5))
+    ax = figure.subplots()
+    names = [str(name) for name in gcps.ids]
+    bars = ax.bar(names, np.zeros(len(names)), color="tab:blue")
+    rms_line = ax.axhline(0.0, color="black", linestyle="--", label="RMS")
+    legend = ax.legend(loc="upper right")
+    ax.set(xlabel="GCP (id)", ylabel="residual R_i (pixels)")
 
-    def draw(which, dcol, drow, degree):
+    def update():
         image_xy = gcps.image_xy.copy()
-        image_xy[which] += (dcol, drow)
-        model = gcp.fit_polynomial(gcps.map_xy, image_xy, degree)
+        image_xy[which.value] += (dcol.value, drow.value)
+        model = gcp.fit_polynomial(gcps.map_xy, image_xy, degree.value)
         _, _, distance = gcp.residuals(model, gcps.map_xy, image_xy)
         rms = gcp.rms_error(model(gcps.map_xy), image_xy)
-        figure, ax = plt.subplots(figsize=(9, 3.5))
-        colours = ["tab:red" if i == which else "tab:blue" for i in range(len(gcps))]
-        ax.bar(gcps.ids, distance, color=colours)
-        ax.axhline(rms, color="black", linestyle="--", label=f"RMS = {rms:.2f} px")
-        ax.set(xlabel="GCP (id)", ylabel="residual R_i (pixels)", title=f"degree {degree}: residuals after moving "
-               f"{gcps.ids[which]} by ({dcol:+.1f}, {drow:+.1f}) px")
-        ax.legend()
-        plt.show()
+        for i, (bar, height) in enumerate(zip(bars, distance)):
+            bar.set_height(height)
+            bar.set_facecolor("tab:red" if i == which.value else "tab:blue")
+        rms_line.set_ydata([rms, rms])
+        legend.get_texts()[0].set_text(f"RMS = {rms:.2f} px")
+        ax.set_ylim(0, 1.15 * max(float(np.max(distance)), rms, 1e-3))
+        ax.set_title(f"degree {degree.value}: residuals after moving {names[which.value]} by "
+                     f"({dcol.value:+.1f}, {drow.value:+.1f}) px", y=1.0)
 
-    output = widgets.interactive_output(draw, {"which": which, "dcol": dcol, "drow": drow, "degree": degree})
-    return widgets.VBox([widgets.HBox([which, degree]), widgets.HBox([dcol, drow]), output])
+    output = widgets.Output()
+    box = widgets.VBox([widgets.HBox([which, degree]), widgets.HBox([dcol, drow]), output])
+    return _live(box, output, figure, update, (which, dcol, drow, degree))
 
 
 def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("ols", "rma")):
@@ -103,7 +260,8 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
     ``"rma"``, the reduced major axis) whose gain and offset are reached at
     t = 1. The mosaic's title gives the brightness step and the contrast
     mismatch over the whole overlap (:func:`rsgeo.radiometry.seam_metrics`);
-    the scatter's title, the line at t and the chosen fit's r.
+    the scatter's title, the line at t and the chosen fit's r. Every
+    (filter, method) fit is computed once, when the widget is built.
 
     Parameters
     ----------
@@ -119,6 +277,7 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
     Returns
     -------
     ipywidgets.VBox
+        With ``figure``, the matplotlib Figure it updates.
 
     Raises
     ------
@@ -133,27 +292,25 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
         raise ValueError(f"size {size!r} must be one of the offered sizes {tuple(sizes)}")
     for name in methods:
         check_choice(name, "method", radiometry.FIT_METHODS)
-    plt = _pyplot()
+    fits = {(s, m): radiometry.fit_gain_offset(x_image, y_image, smooth=s if s > 1 else None, method=m)
+            for s in sizes for m in methods}
     step = widgets.IntSlider(value=0, min=0, max=10, description="t × 10")
     play = widgets.Play(value=0, min=0, max=10, step=1, interval=400, description="play")
     widgets.jslink((play, "value"), (step, "value"))
     size = widgets.Dropdown(options=list(sizes), value=size, description="filter")
     method = widgets.Dropdown(options=list(methods), value=methods[0], description="method")
-    fits = {}
+    figure = _widget_figure((13, 4))
+    axes = figure.subplots(1, 3)
 
-    def draw(step, size, method):
-        if (size, method) not in fits:
-            fits[size, method] = radiometry.fit_gain_offset(
-                x_image, y_image, smooth=size if size > 1 else None, method=method)
-        fit = fits[size, method]
-        figure, axes = plt.subplots(1, 3, figsize=(13, 4))
-        draw_stretch_frame(axes, x_image, y_image, fit.gain, fit.offset, step / 10,
-                           title_extra=f"\n({method}, filter {size}×{size}: r = {fit.r:.3f})")
-        figure.tight_layout()
-        plt.show()
+    def update():
+        fit = fits[size.value, method.value]
+        draw_stretch_frame(axes, x_image, y_image, fit.gain, fit.offset, step.value / 10,
+                           title_extra=f"\n({method.value}, filter {size.value}×{size.value}: "
+                                       f"r = {fit.r:.3f})")
 
-    output = widgets.interactive_output(draw, {"step": step, "size": size, "method": method})
-    return widgets.VBox([widgets.HBox([play, step]), widgets.HBox([size, method]), output])
+    output = widgets.Output()
+    box = widgets.VBox([widgets.HBox([play, step]), widgets.HBox([size, method]), output])
+    return _live(box, output, figure, update, (step, size, method))
 
 
 def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
@@ -162,7 +319,9 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
     Left: the two meshes side by side with the best solution's match lines
     (green right, red wrong); right: best and mean fitness and the
     population's diversity up to the shown generation, on an axis that
-    spans the whole run from the first frame on.
+    spans the whole run from the first frame on. Each run is computed once
+    per setting of the GA's controls and kept; the generation slider (and
+    Play) only moves through the kept history.
 
     Parameters
     ----------
@@ -177,6 +336,7 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
     Returns
     -------
     ipywidgets.VBox
+        With ``figure``, the matplotlib Figure it updates.
 
     Raises
     ------
@@ -191,11 +351,13 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
         raise ValueError(f"truth needs one label per adjustment segment ({len(adjustment)}), "
                          f"got {len(truth)}")
     generations = int(generations)
-    plt = _pyplot()
-    population = widgets.IntSlider(value=60, min=10, max=200, step=10, description="population")
-    elite = widgets.FloatSlider(value=0.05, min=0, max=0.3, step=0.01, description="elitism")
+    # a GA run per change: the sliders report on release, not at every step of a drag
+    population = widgets.IntSlider(value=60, min=10, max=200, step=10, description="population",
+                                   continuous_update=False)
+    elite = widgets.FloatSlider(value=0.05, min=0, max=0.3, step=0.01, description="elitism",
+                                continuous_update=False)
     mutation = widgets.FloatSlider(value=0.04, min=0.0, max=0.2, step=0.005, readout_format=".3f",
-                                   description="mutation")
+                                   description="mutation", continuous_update=False)
     selection = widgets.Dropdown(options=["tournament", "roulette"], value="tournament",
                                  description="selection")
     generation = widgets.IntSlider(value=0, min=0, max=generations - 1, description="generation")
@@ -203,32 +365,33 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
                         description="play")
     widgets.jslink((play, "value"), (generation, "value"))
     runs = {}
+    figure = _widget_figure((12, 4.5))
 
-    def run(population, elite, mutation, selection):
-        key = (population, elite, mutation, selection)
+    def update():
+        key = (population.value, elite.value, mutation.value, selection.value)
         if key not in runs:
             runs[key] = matching.genetic_match(
-                reference, adjustment, seed=seed, population_size=population,
-                generations=generations, elite_fraction=elite, mutation_rate=mutation,
-                selection=selection)
-        return runs[key]
+                reference, adjustment, seed=seed, population_size=population.value,
+                generations=generations, elite_fraction=elite.value, mutation_rate=mutation.value,
+                selection=selection.value)
+        draw_evolution_frame(reference, adjustment, truth, runs[key].history[:generation.value + 1],
+                             figure, generations=generations)
 
-    def draw(population, elite, mutation, selection, generation):
-        result = run(population, elite, mutation, selection)
-        history = result.history[:generation + 1]
-        figure = draw_evolution_frame(reference, adjustment, truth, history,
-                                      generations=generations)
-        figure.tight_layout()
-        plt.show()
+    output = widgets.Output()
+    box = widgets.VBox([widgets.HBox([population, elite]), widgets.HBox([mutation, selection]),
+                        widgets.HBox([play, generation]), output])
+    return _live(box, output, figure, update, (population, elite, mutation, selection, generation))
 
-    output = widgets.interactive_output(draw, {"population": population, "elite": elite, "mutation": mutation,
-                                               "selection": selection, "generation": generation})
-    return widgets.VBox([widgets.HBox([population, elite]), widgets.HBox([mutation, selection]),
-                         widgets.HBox([play, generation]), output])
+
+_EVOLUTION_ARTISTS = weakref.WeakKeyDictionary()   # figure -> the artists of its evolution frame
 
 
 def draw_evolution_frame(reference, adjustment, truth, history, figure=None, generations=None):
     """One frame of the GA's evolution (used by the widget and the jshtml animation).
+
+    The first call on a figure clears it and draws both panels (and sets the
+    layout); later calls for the same meshes, truth and run length update the
+    match lines, curves and title in place, so that frames draw fast.
 
     Parameters
     ----------
@@ -238,7 +401,7 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
     history : list of dict
         ``MatchResult.history`` up to the generation shown (at least one entry).
     figure : matplotlib Figure, optional
-        Cleared and drawn on (a new one when None).
+        Drawn on (a new one when None).
     generations : int, optional
         Generations of the whole run: the evolution panel's x axis spans them
         from the first frame on, so that no frame is empty (default: the
@@ -255,31 +418,56 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
     """
     if not history:
         raise ValueError("history must hold at least one generation to draw")
-    plt = _pyplot()
     if figure is None:
-        figure = plt.figure(figsize=(12, 4.5))
+        figure = _pyplot().figure(figsize=(12, 4.5))
+    last = max(len(history), int(generations or 0)) - 1
+    state = _EVOLUTION_ARTISTS.get(figure)
+    fresh = (state is None or state["reference"] is not reference or state["adjustment"] is not adjustment
+             or state["truth"] is not truth or state["last"] != last
+             or any(ax not in figure.axes for ax in state["axes"]))
+    if fresh:
+        state = _draw_evolution_axes(figure, reference, adjustment, truth, last)
+        _EVOLUTION_ARTISTS[figure] = state
+    left, _ = state["axes"]
+    solution = history[-1]["best_solution"]
+    segments, colours = [], []
+    for k, label in enumerate(solution):
+        if label:
+            segments.append([state["shifted"][k], reference.centroids[label - 1]])
+            colours.append("tab:green" if label == truth[k] else "tab:red")
+    state["matches"].set_segments(segments)
+    state["matches"].set_color(colours or "none")
+    left.set_title(f"generation {len(history) - 1}: {np.asarray(solution).tolist()}", y=1.0)
+    shown = np.arange(len(history))
+    for line, name in zip(state["curves"], ("best", "mean", "diversity")):
+        line.set_data(shown, [h[name] for h in history])
+        line.set_markevery([len(history) - 1])
+    if fresh:
+        fix_layout(figure)       # once: every frame keeps the same layout
+    return figure
+
+
+def _draw_evolution_axes(figure, reference, adjustment, truth, last):
+    """Draw an evolution frame's fixed parts and empty moving artists (see :func:`draw_evolution_frame`)."""
+    from matplotlib.collections import LineCollection
+
     figure.clear()
     left, right = figure.subplots(1, 2)
     offset = np.array([reference.centroids[:, 0].max() - adjustment.centroids[:, 0].min() + 80, 0.0])
     shifted = adjustment.centroids + offset
     draw_mesh(left, reference.centroids, color="tab:green")
     draw_mesh(left, shifted, color="tab:orange")
-    solution = history[-1]["best_solution"]
-    for k, label in enumerate(solution):
-        if label:
-            right_match = label == truth[k]
-            left.plot(*np.array([shifted[k], reference.centroids[label - 1]]).T,
-                      color="tab:green" if right_match else "tab:red", linewidth=1.5)
-    left.set(title=f"generation {len(history) - 1}: {np.asarray(solution).tolist()}", xlabel="x (map units)",
-             ylabel="y (map units)")
+    matches = LineCollection([], linewidths=1.5)
+    left.add_collection(matches, autolim=False)
+    left.set(xlabel="x (map units)", ylabel="y (map units)")
     left.invert_yaxis()
-    shown = np.arange(len(history))
-    last = max(len(history), int(generations or 0)) - 1
-    style = {"marker": "o", "markersize": 3, "markevery": [len(history) - 1]}
-    right.plot(shown, [h["best"] for h in history], label="best FA", **style)
-    right.plot(shown, [h["mean"] for h in history], label="mean FA", **style)
-    right.plot(shown, [h["diversity"] for h in history], label="diversity", linestyle=":", **style)
+    style = {"marker": "o", "markersize": 3}
+    curves = (right.plot([], [], label="best FA", **style)[0],
+              right.plot([], [], label="mean FA", **style)[0],
+              right.plot([], [], label="diversity", linestyle=":", **style)[0])
     right.set(xlabel="generation (count)", ylabel="FA or diversity (0–1)", ylim=(0, 1.02),
-              xlim=(-0.5, max(last, 1) + 0.5), title="evolution")
+              xlim=(-0.5, max(last, 1) + 0.5))
+    right.set_title("evolution", y=1.0)
     right.legend(loc="lower right")
-    return figure
+    return {"reference": reference, "adjustment": adjustment, "truth": truth, "last": last,
+            "axes": (left, right), "shifted": shifted, "matches": matches, "curves": curves}
