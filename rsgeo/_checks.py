@@ -7,6 +7,10 @@ error at the line they wrote, not a traceback from deep inside NumPy.
 
 import numpy as np
 
+__all__ = [
+    "as_points", "as_image", "check_range", "check_choice",
+]
+
 
 def as_points(points, name="points"):
     """Return ``points`` as a float64 array of shape (n, 2), finite.

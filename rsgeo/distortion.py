@@ -7,11 +7,23 @@ equatorial radius 6378.137 km and the sidereal rate 7.292115e-5 rad/s; a
 circular orbit's angular rate comes from its altitude by Kepler's third law.
 """
 
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._checks import check_range
+from ._checks import as_points, check_range
+from .gcp import GeometricModel, InverseModel
+from .resample import grid_positions, interpolate
+
+__all__ = [
+    "EARTH_RADIUS_KM", "EQUATORIAL_RADIUS_KM", "EARTH_ROTATION_RAD_S", "GM_KM3_S2",
+    "orbital_rate", "ground_track_speed", "track_angle", "PASS_DIRECTIONS",
+    "earth_rotation_skew", "earth_rotation_offset", "frame_outline", "skew_per_line",
+    "skew_angle", "zenith_angle", "ground_distance", "slant_range", "pixel_size", "swath_width",
+    "panoramic_displacement", "attitude_displacement", "scan_footprint", "bowtie_overlap",
+    "scan_edges", "SystematicDistortion", "simulate", "correct", "distorted_grid",
+]
 
 EARTH_RADIUS_KM = 6371.0
 EQUATORIAL_RADIUS_KM = 6378.137
@@ -20,23 +32,76 @@ GM_KM3_S2 = 398600.4418
 
 
 def orbital_rate(altitude_km):
-    """Angular rate (rad/s) of a circular orbit at this altitude: sqrt(GM / (R + h)³)."""
+    """Angular rate (rad/s) of a circular orbit at this altitude: sqrt(GM / (R + h)³).
+
+    Parameters
+    ----------
+    altitude_km : float
+        Orbit altitude above the ground, km.
+
+    Returns
+    -------
+    float
+        rad/s.
+
+    Raises
+    ------
+    ValueError
+        If the altitude is not a positive finite number.
+
+    References
+    ----------
+    Kepler's third law for a circular orbit, GM = 398600.4418 km³/s².
+    """
     altitude_km = check_range(altitude_km, "altitude_km", low=1e-9, why="the satellite flies above the ground")
     return float(np.sqrt(GM_KM3_S2 / (EARTH_RADIUS_KM + altitude_km) ** 3))
 
 
 def ground_track_speed(altitude_km):
-    """Speed (km/s) of the sub-satellite point on the ground: orbital rate × R."""
+    """Speed (km/s) of the sub-satellite point on the ground: orbital rate × R.
+
+    Parameters
+    ----------
+    altitude_km : float
+        Orbit altitude above the ground, km.
+
+    Returns
+    -------
+    float
+        km/s.
+
+    Raises
+    ------
+    ValueError
+        If the altitude is not a positive finite number.
+    """
     return orbital_rate(altitude_km) * EARTH_RADIUS_KM
 
 
 def track_angle(latitude_deg, inclination_deg=98.2):
-    """Angle ζ (degrees) between the ground track and the meridian: sin ζ = |cos i| / cos φ.
+    """Angle ζ (degrees) between the ground track and the meridian: ``sin ζ = |cos i| / cos φ``.
+
+    Parameters
+    ----------
+    latitude_deg : float
+        Latitude, -90 to 90.
+    inclination_deg : float
+        Orbit inclination, 0 to 180.
+
+    Returns
+    -------
+    float
+        ζ, 0 to 90 degrees.
 
     Raises
     ------
     ValueError
         If the orbit never reaches this latitude.
+
+    References
+    ----------
+    Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
+    Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
     """
     latitude = np.radians(check_range(latitude_deg, "latitude_deg", -90, 90, "a latitude"))
     inclination = np.radians(check_range(inclination_deg, "inclination_deg", 0, 180))
@@ -107,6 +172,11 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, 
         For a latitude outside ±90°, a non-positive altitude or frame length,
         a latitude the orbit never reaches, or an unknown pass direction.
 
+    References
+    ----------
+    Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
+    Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
+
     Examples
     --------
     >>> round(earth_rotation_skew(0.0), 2)      # Landsat frame at the equator: 12.6 km west
@@ -144,6 +214,11 @@ def earth_rotation_offset(latitude_deg, frame_length_km=185.0, altitude_km=705.0
         first's); north component positive on a descending pass, negative on an
         ascending one.
 
+    Raises
+    ------
+    ValueError
+        As :func:`earth_rotation_skew`.
+
     Examples
     --------
     >>> east, north = earth_rotation_offset(-23.5, 113.0, 778.0, 98.5)    # CBERS over São Paulo
@@ -170,10 +245,26 @@ def frame_outline(latitude_deg, frame_length_km, width_km, altitude_km=705.0, in
     (west), the first line stays: the rectangle becomes the parallelogram the
     scene really covers.
 
+    Parameters
+    ----------
+    latitude_deg, frame_length_km : float
+        As in :func:`earth_rotation_skew`.
+    width_km : float
+        Across-track width of the frame.
+    altitude_km, inclination_deg, pass_direction
+        As in :func:`earth_rotation_skew`.
+    earth_rotation : bool
+        Move the last line by the Earth's rotation (True) or not.
+
     Returns
     -------
     east_km, north_km : ndarray, shape (5,)
         Closed outline: first line's two ends, last line's two ends, back to the start.
+
+    Raises
+    ------
+    ValueError
+        As :func:`earth_rotation_skew`, or for a negative width.
 
     Examples
     --------
@@ -204,6 +295,28 @@ def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclina
     line's; the systematic correction shifts line n back east by n times this
     value). Positive on both passes: the size, as in :func:`earth_rotation_skew`.
 
+    Parameters
+    ----------
+    latitude_deg : float
+        Latitude of the scene.
+    lines : int
+        Lines in the scene.
+    pixel_size_km : float
+        Along-track size of a line.
+    altitude_km, inclination_deg, pass_direction
+        As in :func:`earth_rotation_skew`.
+
+    Returns
+    -------
+    float
+        Pixels of westward offset per line (≥ 0).
+
+    Raises
+    ------
+    ValueError
+        If ``lines`` is not a positive whole number, the pixel size is not
+        positive, or as :func:`earth_rotation_skew`.
+
     Examples
     --------
     >>> round(skew_per_line(0.0, 6000, 0.030833), 4)     # Landsat: 6000 lines of 30.8 m
@@ -218,7 +331,30 @@ def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclina
 
 
 def skew_angle(latitude_deg, altitude_km=705.0, inclination_deg=98.2):
-    """Angle (degrees) by which Earth rotation skews the image's columns."""
+    """Angle (degrees) by which Earth rotation skews the image's columns.
+
+    Parameters
+    ----------
+    latitude_deg : float
+        Latitude of the scene.
+    altitude_km, inclination_deg
+        As in :func:`earth_rotation_skew`.
+
+    Returns
+    -------
+    float
+        Degrees, ≥ 0: the across-track offset per along-track distance, as an angle.
+
+    Raises
+    ------
+    ValueError
+        As :func:`earth_rotation_skew`.
+
+    References
+    ----------
+    Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
+    Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
+    """
     offset = earth_rotation_skew(latitude_deg, 100.0, altitude_km, inclination_deg)
     return float(np.degrees(np.arctan2(offset, 100.0)))
 
@@ -236,7 +372,31 @@ def _check_scan(scan_angle_deg, altitude_km):
 
 
 def zenith_angle(scan_angle_deg, altitude_km):
-    """Sensor zenith angle z (degrees) seen from the ground: sin z = ((R + h)/R)·sin θ."""
+    """Sensor zenith angle z (degrees) seen from the ground: sin z = ((R + h)/R)·sin θ.
+
+    Parameters
+    ----------
+    scan_angle_deg : float or array_like
+        Scan angle from nadir, degrees.
+    altitude_km : float
+        Orbit altitude above the ground, km.
+
+    Returns
+    -------
+    float or ndarray
+        Degrees, larger than the scan angle on a curved Earth.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive altitude or a scan angle that is not finite or is
+        beyond the horizon.
+
+    References
+    ----------
+    Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
+    Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
+    """
     theta = _check_scan(scan_angle_deg, altitude_km)
     return np.degrees(np.arcsin((EARTH_RADIUS_KM + altitude_km) / EARTH_RADIUS_KM * np.sin(theta)))
 
@@ -246,6 +406,31 @@ def ground_distance(scan_angle_deg, altitude_km, curved_earth=True):
 
     Flat Earth: h·tan θ. Curved Earth: R·γ, with γ = z − θ the angle at the
     Earth's centre.
+
+    Parameters
+    ----------
+    scan_angle_deg : float or array_like
+        Scan angle from nadir, degrees.
+    altitude_km : float
+        Orbit altitude above the ground, km.
+    curved_earth : bool
+        A sphere of radius 6371 km (True) or a flat Earth.
+
+    Returns
+    -------
+    float or ndarray
+        km, signed like the scan angle.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive altitude or a scan angle that is not finite or is
+        beyond the horizon.
+
+    References
+    ----------
+    Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
+    Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
     """
     theta = _check_scan(scan_angle_deg, altitude_km)
     if not curved_earth:
@@ -255,7 +440,28 @@ def ground_distance(scan_angle_deg, altitude_km, curved_earth=True):
 
 
 def slant_range(scan_angle_deg, altitude_km, curved_earth=True):
-    """Distance (km) from the sensor to the ground point seen at a scan angle."""
+    """Distance (km) from the sensor to the ground point seen at a scan angle.
+
+    Parameters
+    ----------
+    scan_angle_deg : float or array_like
+        Scan angle from nadir, degrees.
+    altitude_km : float
+        Orbit altitude above the ground, km.
+    curved_earth : bool
+        A sphere of radius 6371 km (True) or a flat Earth.
+
+    Returns
+    -------
+    float or ndarray
+        km.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive altitude or a scan angle that is not finite or is
+        beyond the horizon.
+    """
     theta = _check_scan(scan_angle_deg, altitude_km)
     if not curved_earth:
         return altitude_km / np.cos(theta)
@@ -275,6 +481,17 @@ def pixel_size(scan_angle_deg, altitude_km, nadir_pixel_km=1.0, curved_earth=Tru
     * curved Earth: along = β·s, across = β·s / cos z, with s the slant range
       and z the sensor zenith angle.
 
+    Parameters
+    ----------
+    scan_angle_deg : float or array_like
+        Scan angle from nadir, degrees.
+    altitude_km : float
+        Orbit altitude above the ground, km.
+    nadir_pixel_km : float
+        The pixel's size at nadir, km.
+    curved_earth : bool
+        A sphere of radius 6371 km (True) or a flat Earth.
+
     Returns
     -------
     along_track_km, across_track_km : float or ndarray
@@ -283,6 +500,12 @@ def pixel_size(scan_angle_deg, altitude_km, nadir_pixel_km=1.0, curved_earth=Tru
     ------
     ValueError
         For a non-positive altitude or a scan angle beyond the horizon.
+
+    References
+    ----------
+    Wolfe, R. E., Nishihama, M., Fleig, A. J. et al. (2002), "Achieving
+    sub-pixel geolocation accuracy in support of MODIS land science",
+    Remote Sensing of Environment 83, 31-49.
 
     Examples
     --------
@@ -303,6 +526,26 @@ def pixel_size(scan_angle_deg, altitude_km, nadir_pixel_km=1.0, curved_earth=Tru
 def swath_width(half_angle_deg, altitude_km, curved_earth=True):
     """Ground width (km) of a swath scanned to ±half_angle_deg.
 
+    Parameters
+    ----------
+    half_angle_deg : float
+        Largest scan angle, degrees.
+    altitude_km : float
+        Orbit altitude above the ground, km.
+    curved_earth : bool
+        A sphere of radius 6371 km (True) or a flat Earth.
+
+    Returns
+    -------
+    float
+        km.
+
+    Raises
+    ------
+    ValueError
+        For a non-positive altitude or a scan angle that is not finite or is
+        beyond the horizon.
+
     Examples
     --------
     >>> round(float(swath_width(55.0, 705.0)))         # MODIS
@@ -318,6 +561,31 @@ def panoramic_displacement(scan_angle_deg, altitude_km, curved_earth=True):
     scan angle θ is at ground distance d(θ) while the image puts it at h·θ
     (its pixel count times the nadir pixel). The difference grows towards the
     swath edge: the lecture's "deslocamento dos pixels ao longo da linha de varredura".
+
+    Parameters
+    ----------
+    scan_angle_deg : float or array_like
+        Scan angle from nadir, degrees.
+    altitude_km : float
+        Orbit altitude above the ground, km.
+    curved_earth : bool
+        A sphere of radius 6371 km (True) or a flat Earth.
+
+    Returns
+    -------
+    float or ndarray
+        km, positive away from nadir (the ground point is further out).
+
+    Raises
+    ------
+    ValueError
+        For a non-positive altitude or a scan angle that is not finite or is
+        beyond the horizon.
+
+    References
+    ----------
+    Negri, R. G., *Pré-processamento: correções geométricas*, lecture
+    slides (after Meneses and Almeida, 2012).
     """
     theta = _check_scan(scan_angle_deg, altitude_km)
     return ground_distance(np.degrees(theta), altitude_km, curved_earth) - altitude_km * theta
@@ -491,6 +759,11 @@ def bowtie_overlap(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0
     float or ndarray
         Overlap fraction, 0 (scans just touch) to 1.
 
+    Raises
+    ------
+    ValueError
+        As :func:`scan_footprint`.
+
     Examples
     --------
     >>> round(float(bowtie_overlap(55.0, 705.0)), 2)       # MODIS swath edge: about half
@@ -508,12 +781,24 @@ def scan_edges(scan_index, scan_angle_deg, altitude_km, detectors=10, nadir_pixe
     For drawing the bow-tie: scan k is centred k advances along track (one
     advance = the nadir footprint of :func:`scan_footprint`).
 
+    Parameters
+    ----------
+    scan_index : int
+        Scan number, 0 at the reference scan.
+    scan_angle_deg, altitude_km, detectors, nadir_pixel_km, curved_earth
+        As in :func:`scan_footprint`.
+
     Returns
     -------
     across_km, first_km, last_km : ndarray
         Ground distance from nadir (signed like the scan angle) and the
         footprint's two along-track edges, in the orbit-aligned grid
         (along = R·atan2(y, z) on a curved Earth).
+
+    Raises
+    ------
+    ValueError
+        As :func:`scan_footprint`.
 
     Examples
     --------
@@ -537,13 +822,16 @@ def scan_edges(scan_index, scan_angle_deg, altitude_km, detectors=10, nadir_pixe
 
 
 @dataclass
-class SystematicDistortion:
+class SystematicDistortion(GeometricModel):
     """A combination of systematic distortions, as a mapping between pixel grids.
 
     Rows are along track (line by line in time), columns across track; the
-    image centre is nadir. ``true_to_image`` maps a position on the true
-    (corrected) grid to where the distorted image records it;
-    ``image_to_true`` is its exact inverse.
+    centre of a grid of ``shape`` is nadir. It follows rsgeo's mapping
+    protocol: ``distortion(points)`` maps (col, row) positions on the true
+    (corrected) grid to where the distorted image records them, and
+    ``distortion.inverse()`` maps recorded positions back to the true grid
+    (the systematic correction), solved exactly; ``residuals(src, dst)`` as
+    every model has.
 
     Parameters
     ----------
@@ -575,12 +863,24 @@ class SystematicDistortion:
     roll_deg, pitch_deg : float
         Attitude in degrees, added to ``roll_px`` and ``pitch_px``; they need
         the view geometry (the altitude turns an angle into ground).
+    shape : (rows, cols), optional
+        The grid whose centre is nadir; needed to map points
+        (:meth:`on_grid` sets it). :func:`simulate` and :func:`correct` use
+        the image's shape.
 
     Raises
     ------
     ValueError
-        For a non-positive scale, only one of the two view-geometry values, or
-        an attitude in degrees without view geometry.
+        For a non-positive scale, only one of the two view-geometry values,
+        an attitude in degrees without view geometry, or a shape that is not
+        two positive whole numbers.
+
+    Examples
+    --------
+    >>> drift = SystematicDistortion(yaw_rate_deg_per_line=0.05, shape=(300, 300))
+    >>> recorded = drift([[10.0, 200.0]])
+    >>> drift.inverse()(recorded).round(9) + 0.0
+    array([[ 10., 200.]])
     """
 
     skew_per_line: float = 0.0
@@ -593,9 +893,12 @@ class SystematicDistortion:
     nadir_pixel_km: float = None
     roll_deg: float = 0.0
     pitch_deg: float = 0.0
+    shape: tuple = None
 
     def __post_init__(self):
         check_range(self.scale, "scale", low=1e-6, why="a ratio of altitudes")
+        if self.shape is not None:
+            self.shape = _check_grid_shape(self.shape)
         if (self.view_altitude_km is None) != (self.nadir_pixel_km is None):
             raise ValueError("view_altitude_km and nadir_pixel_km go together: give both or neither")
         if self.view_altitude_km is None and (self.roll_deg or self.pitch_deg):
@@ -608,7 +911,13 @@ class SystematicDistortion:
         return self.nadir_pixel_km / self.view_altitude_km
 
     def attitude_rad(self):
-        """Total (roll, pitch) in radians, with view geometry: degrees plus pixels × IFOV."""
+        """Total (roll, pitch) in radians, with view geometry: degrees plus pixels × IFOV.
+
+        Returns
+        -------
+        roll, pitch : float
+            Radians.
+        """
         if self.view_altitude_km is None:
             raise ValueError("attitude in radians needs view_altitude_km and nadir_pixel_km")
         return (np.radians(self.roll_deg) + self.roll_px * self._ifov,
@@ -658,7 +967,80 @@ class SystematicDistortion:
     def _yaw(self, rows_from_centre):
         return np.radians(self.yaw_deg + self.yaw_rate_deg_per_line * rows_from_centre)
 
-    def true_to_image(self, cols, rows, shape):
+    def on_grid(self, shape):
+        """This distortion on a grid of ``shape`` (rows, cols), whose centre is nadir.
+
+        Parameters
+        ----------
+        shape : (rows, cols)
+
+        Returns
+        -------
+        SystematicDistortion
+            A copy with ``shape`` set, ready to map points.
+
+        Raises
+        ------
+        ValueError
+            If the shape is not two positive whole numbers.
+        """
+        return replace(self, shape=_check_grid_shape(shape))
+
+    def _grid(self):
+        if self.shape is None:
+            raise ValueError("a SystematicDistortion maps points on a grid whose centre is nadir: "
+                             "give shape=(rows, cols), or use distortion.on_grid(shape)")
+        return self.shape
+
+    def __call__(self, points):
+        """Distorted-image (col, row) of true-grid (col, row) positions.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+            (col, row) on the true grid of ``shape``.
+
+        Returns
+        -------
+        ndarray, shape (n, 2)
+            Where the distorted image records them.
+
+        Raises
+        ------
+        ValueError
+            If the points are not (n, 2) finite numbers or ``shape`` is not set.
+        """
+        points = as_points(points)
+        return np.column_stack(self._true_to_image(points[:, 0], points[:, 1], self._grid()))
+
+    def inverse(self):
+        """The systematic correction: true-grid (col, row) of distorted-image positions.
+
+        The distortions are undone in reverse order; a varying yaw makes the
+        rotation angle depend on the true row, solved by Newton's method per
+        point and checked by mapping the answer forward again.
+
+        Returns
+        -------
+        InverseModel
+            Callable on (n, 2) recorded positions; raises ``ValueError`` for
+            points where no true position maps there within 1e-6 pixel (a yaw
+            rate so large that the distortion folds the grid over itself).
+
+        Raises
+        ------
+        ValueError
+            If ``shape`` is not set.
+        """
+        shape = self._grid()
+
+        def solve(points):
+            cols, rows = self._image_to_true(points[:, 0], points[:, 1], shape, strict=True)
+            return np.column_stack([cols, rows])
+
+        return InverseModel(self, solve)
+
+    def _true_to_image(self, cols, rows, shape):
         """Distorted-image (col, row) of true-grid positions; shape = (rows, cols) of the grid."""
         centre_c, centre_r = shape[1] / 2, shape[0] / 2
         c, r = np.asarray(cols, float) - centre_c, np.asarray(rows, float) - centre_r
@@ -681,10 +1063,15 @@ class SystematicDistortion:
         c = (theta + roll) / self._ifov
         return c + centre_c, r + centre_r
 
-    def image_to_true(self, cols, rows, shape):
-        """Exact inverse of :meth:`true_to_image`: the systematic correction."""
+    def _image_to_true(self, cols, rows, shape, strict=True):
+        """Inverse of :meth:`_true_to_image` on arrays of any shape.
+
+        With ``strict``, raise where no true position maps onto the input;
+        otherwise return NaN there.
+        """
         centre_c, centre_r = shape[1] / 2, shape[0] / 2
-        c, r = np.asarray(cols, float) - centre_c, np.asarray(rows, float) - centre_r
+        image_c, image_r = np.asarray(cols, float), np.asarray(rows, float)
+        c, r = image_c - centre_c, image_r - centre_r
         if self.view_altitude_km is not None:
             roll, pitch = self.attitude_rad()
             point = _ground_point(self.view_altitude_km, c * self._ifov - roll, -pitch)
@@ -695,42 +1082,133 @@ class SystematicDistortion:
             c, r = c * self.scale, r * self.scale
             c, r = c - self.roll_px, r - self.pitch_px
         c = c - self.skew_per_line * (r + centre_r)
-        # Undo the yaw: r_true enters the angle, so iterate (converges in a few steps
-        # because the rotation per line is tiny).
+        # Undo the yaw: (c, r) is the true position rotated by an angle that depends on the
+        # true row r_t, so r_t solves g(r_t) = r_t - (c sin θ(r_t) + r cos θ(r_t)) = 0.
         c_rot, r_rot = c, r
-        r_true = r_rot
-        for _ in range(50):
+        r_true = np.array(r_rot, dtype=float, copy=True)
+        rate = np.radians(self.yaw_rate_deg_per_line)
+        for _ in range(60):
             angle = self._yaw(r_true)
-            c_true = c_rot * np.cos(angle) - r_rot * np.sin(angle)
-            r_next = c_rot * np.sin(angle) + r_rot * np.cos(angle)
-            if np.allclose(r_next, r_true, atol=1e-10, rtol=0):
-                r_true = r_next
+            g = r_true - (c_rot * np.sin(angle) + r_rot * np.cos(angle))
+            slope = 1 - rate * (c_rot * np.cos(angle) - r_rot * np.sin(angle))
+            slope = np.where(np.abs(slope) < 1e-12, 1e-12, slope)
+            r_true = r_true - g / slope
+            if np.all(np.abs(g) < 1e-11 * (1 + np.abs(r_true))):
                 break
-            r_true = r_next
-        return c_true + centre_c, r_true + centre_r
+        angle = self._yaw(r_true)
+        c_true = c_rot * np.cos(angle) - r_rot * np.sin(angle)
+        c_true, r_true = c_true + centre_c, r_true + centre_r
+        # the answer must map forward onto the input, and be the only one that does
+        back_c, back_r = self._true_to_image(c_true, r_true, shape)
+        wrong = ~(np.hypot(back_c - image_c, back_r - image_r) < 1e-6)
+        wrong = wrong | _yaw_roots(c_rot, r_rot, np.radians(self.yaw_deg), rate) > 1
+        if wrong.any():
+            if strict:
+                index = np.flatnonzero(np.ravel(wrong))[0]
+                first = [float(np.ravel(image_c)[index]), float(np.ravel(image_r)[index])]
+                raise ValueError(
+                    f"{int(wrong.sum())} of {wrong.size} recorded points (first: {first}) have "
+                    "no single true position: the inverse did not converge, or several true "
+                    f"positions map there. A yaw rate of {self.yaw_rate_deg_per_line}°/line "
+                    "turns the lines so fast that the grid folds over itself beyond "
+                    f"{1 / max(abs(rate), 1e-300):.3g} px from nadir; use a smaller rate or "
+                    "points nearer nadir")
+            c_true, r_true = np.where(wrong, np.nan, c_true), np.where(wrong, np.nan, r_true)
+        return c_true, r_true
+
+
+def _yaw_roots(c_rot, r_rot, yaw, rate):
+    """How many true rows r solve r = ρ cos(yaw + rate·r - φ) for a yaw-rotated (c_rot, r_rot).
+
+    The varying yaw's inverse is unique where |rate|·ρ < 1 (ρ = the distance
+    from nadir): there the equation's left side grows faster than its right.
+    Elsewhere its roots, all within [-ρ, ρ], are counted by sign changes on a
+    grid finer than the cosine's period.
+    """
+    c_rot, r_rot = np.broadcast_arrays(np.asarray(c_rot, float), np.asarray(r_rot, float))
+    radius = np.hypot(c_rot, r_rot)
+    counts = np.ones(radius.shape, dtype=int)
+    folded = np.abs(rate) * radius >= 1
+    if not folded.any():
+        return counts
+    rho, phi = radius[folded], np.arctan2(c_rot[folded], r_rot[folded])
+    samples = int(np.ceil(16 * np.abs(rate) * rho.max() / np.pi)) + 33
+    found = np.empty(rho.size, dtype=int)
+    for start in range(0, rho.size, 4096):
+        part = slice(start, start + 4096)
+        r = rho[part, None] * np.linspace(-1, 1, samples)[None, :]
+        g = r - rho[part, None] * np.cos(yaw + rate * r - phi[part, None])
+        found[part] = np.count_nonzero(np.diff(np.sign(g), axis=1) != 0, axis=1)
+    counts[folded] = found
+    return counts
+
+
+def _check_grid_shape(shape):
+    """(rows, cols) as two positive ints."""
+    try:
+        rows, cols = (int(n) for n in shape)
+    except (TypeError, ValueError):
+        raise ValueError(f"shape must be (rows, cols), got {shape!r}") from None
+    if rows < 1 or cols < 1 or (rows, cols) != tuple(shape):
+        raise ValueError(f"shape must be two positive whole numbers (rows, cols), got {shape!r}")
+    return rows, cols
+
+
+def _on_image_grid(distortion, shape):
+    """``distortion`` on the image's grid; refuse a distortion set for another grid."""
+    if not isinstance(distortion, SystematicDistortion):
+        raise ValueError(f"distortion must be a SystematicDistortion, got {type(distortion).__name__}")
+    if distortion.shape is not None and tuple(distortion.shape) != tuple(shape):
+        raise ValueError(f"the distortion is set on a {distortion.shape} grid but the image is "
+                         f"{tuple(shape)}; use distortion.on_grid(image.shape[-2:])")
+    return distortion.on_grid(shape)
 
 
 def simulate(image, distortion, method="bilinear", nodata=0):
     """Apply a systematic distortion to an image: what the sensor would record.
+
+    Each recorded cell asks the distortion's inverse where on the true ground
+    it looks, and interpolates the true image there.
 
     Parameters
     ----------
     image : ndarray
         The true scene, 2-D or bands first.
     distortion : SystematicDistortion
+        Its grid is the image's (its ``shape``, if set, must match).
     method : {"nearest", "bilinear", "cubic"}
-        Interpolator (rsgeo.resample).
+        Interpolator (:func:`rsgeo.resample.interpolate`).
+    nodata : number
+        Value of cells that see ground outside the scene.
 
     Returns
     -------
-    distorted : ndarray
-        Same shape and dtype; cells that see ground outside the scene get nodata.
-    """
-    from .resample import grid_positions, interpolate
+    ndarray
+        Same shape and dtype; cells that see ground outside the scene get
+        nodata, and so do cells where the inverse does not exist (a warning
+        says how many).
 
+    Raises
+    ------
+    ValueError
+        If the distortion is not a :class:`SystematicDistortion` or is set on
+        another grid, or as :func:`rsgeo.resample.interpolate`.
+
+    Warns
+    -----
+    RuntimeWarning
+        When some recorded cells have no true position (a yaw rate that folds the grid).
+    """
     shape = np.shape(image)[-2:]
+    distortion = _on_image_grid(distortion, shape)
     cols, rows = grid_positions(shape)
-    true_c, true_r = distortion.image_to_true(cols, rows, shape)
+    true_c, true_r = distortion._image_to_true(cols, rows, shape, strict=False)
+    lost = ~np.isfinite(true_c)
+    if lost.any():
+        warnings.warn(f"{int(lost.sum())} of {lost.size} recorded cells have no true position "
+                      "(the distortion folds the grid over itself there); they get nodata",
+                      RuntimeWarning, stacklevel=2)
+        true_c, true_r = np.where(lost, -1.0, true_c), np.where(lost, -1.0, true_r)
     return interpolate(image, true_c, true_r, method, nodata)
 
 
@@ -738,28 +1216,63 @@ def correct(distorted, distortion, method="bilinear", nodata=0):
     """The systematic correction: resample the distorted image back onto the true grid.
 
     Each true-grid cell asks the known model where the sensor recorded it
-    (:meth:`SystematicDistortion.true_to_image`) and interpolates there.
-    """
-    from .resample import grid_positions, interpolate
+    (``distortion(points)``) and interpolates there.
 
+    Parameters
+    ----------
+    distorted : ndarray
+        The recorded image, 2-D or bands first.
+    distortion : SystematicDistortion
+        The model of the distortion (exact, or known with errors); its grid is
+        the image's.
+    method : {"nearest", "bilinear", "cubic"}
+    nodata : number
+        Value of true cells recorded outside the image.
+
+    Returns
+    -------
+    ndarray
+        Same shape and dtype.
+
+    Raises
+    ------
+    ValueError
+        As :func:`simulate`.
+    """
     shape = np.shape(distorted)[-2:]
+    distortion = _on_image_grid(distortion, shape)
     cols, rows = grid_positions(shape)
-    image_c, image_r = distortion.true_to_image(cols, rows, shape)
+    image_c, image_r = distortion._true_to_image(cols, rows, shape)
     return interpolate(distorted, image_c, image_r, method, nodata)
 
 
 def distorted_grid(distortion, shape, step=32):
     """Lines of the true grid drawn where the distorted image records them (for plots).
 
+    Parameters
+    ----------
+    distortion : SystematicDistortion
+    shape : (rows, cols)
+        The true grid.
+    step : float
+        Spacing of the grid lines, pixels.
+
     Returns
     -------
-    list of (cols, rows) arrays, one per grid line.
+    list of (cols, rows) arrays
+        One per grid line, rows first then columns.
+
+    Raises
+    ------
+    ValueError
+        As :func:`simulate`.
     """
+    distortion = _on_image_grid(distortion, shape)
     lines = []
     for r in np.arange(0, shape[0] + 1, step):
         c = np.linspace(0, shape[1], 200)
-        lines.append(distortion.true_to_image(c, np.full_like(c, r), shape))
+        lines.append(distortion._true_to_image(c, np.full_like(c, r), shape))
     for c in np.arange(0, shape[1] + 1, step):
         r = np.linspace(0, shape[0], 200)
-        lines.append(distortion.true_to_image(np.full_like(r, c), r, shape))
+        lines.append(distortion._true_to_image(np.full_like(r, c), r, shape))
     return lines

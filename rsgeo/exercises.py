@@ -28,6 +28,15 @@ import numpy as np
 
 from . import distortion, gcp, radiometry, resample
 from ._checks import as_points
+from .matching import BITS_PER_GENE, decode, fitness
+
+__all__ = [
+    "ExerciseNotSolved", "Verdict", "check_skew", "check_pixel_growth", "check_swath",
+    "check_design_matrix", "check_rms", "check_blunder", "check_degree_choice",
+    "check_bilinear", "check_method_for_classes", "check_overshoot", "check_gain_offset",
+    "check_truncation_levels", "check_filter_size", "check_fitness", "check_decode",
+    "check_suboptimal_segment",
+]
 
 
 class ExerciseNotSolved(Exception):
@@ -652,7 +661,7 @@ def check_degree_choice(order, gcps, is_check):
         order = _one_of(_integer(order, "order", "a degree"), "order", offered, "the degree")
     except _WrongForm as form:
         return form.verdict(generic)
-    fits = {n: gcp.check_point_errors(gcps.map_xy, gcps.image_xy, n, is_check) for n in offered}
+    fits = {n: gcp.fit_with_check_points(gcps.map_xy, gcps.image_xy, n, is_check) for n in offered}
     errors = {n: fit[2] for n, fit in fits.items()}
     best = min(errors, key=errors.get)
     if order == best:
@@ -1029,8 +1038,6 @@ _FITNESS_SECTION = "chapter 6, section 'The fitness and the genetic algorithm'"
 
 def _fitness_variants(solution, reference, adjustment, alpha):
     """The fitness as a student might compute it wrongly, for a one-to-one solution: (value, hint)."""
-    from .matching import fitness
-
     truth = fitness(solution, reference, adjustment, alpha)
     variants = [
         (fitness(solution, reference, adjustment, 1.0), "That is FS alone; FA also weighs the layout, FE."),
@@ -1098,8 +1105,6 @@ def check_fitness(value, solution, reference, adjustment, alpha=0.5):
     >>> check_fitness(1.0, [1, 2, 3], mesh, mesh)
     Correct: `value` = 1.
     """
-    from .matching import fitness
-
     expected = fitness(solution, reference, adjustment, alpha)
     return _judge(value, "value", expected, 1e-6,
                   "FA = a·FS + (1 − a)·FE with FS = 1 − Σ|S_R − S_A| / Σ S_R and "
@@ -1130,8 +1135,6 @@ def check_decode(solution, chromosome):
     >>> check_decode([3, 5], [0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 1, 0, 1])
     Correct: decoded [3, 5].
     """
-    from .matching import BITS_PER_GENE, decode
-
     bits = np.asarray(chromosome, dtype=np.int64)
     genes = bits.reshape(-1, BITS_PER_GENE)
     expected = decode(bits)

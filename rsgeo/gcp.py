@@ -25,6 +25,15 @@ import numpy as np
 
 from ._checks import as_points, check_range
 
+__all__ = [
+    "ORDERS", "min_gcps", "term_names", "design_matrix", "GeometricModel", "InverseModel",
+    "PolynomialModel", "fit_polynomial", "coefficient_standard_errors", "residuals",
+    "rms_error", "mean_error", "refine_gcps", "fit_with_check_points", "leave_one_out_errors",
+    "condition_number", "hull_coverage", "predicted_error_map", "measure_shifts",
+    "GeotransformCheck", "compare_with_geotransform", "offsets_against_reference", "GCPSet",
+    "read_points", "write_points",
+]
+
 ORDERS = (1, 2, 3)
 
 # (power of x, power of y) of every term, in the lecture's order:
@@ -44,6 +53,21 @@ def min_gcps(order):
     Lecture, slide "Transformações polinomiais": the degree fixes the minimum
     number of GCPs needed to solve the linear system.
 
+    Parameters
+    ----------
+    order : {1, 2, 3}
+        Degree of the polynomial.
+
+    Returns
+    -------
+    int
+        (order + 1)(order + 2) / 2: 3, 6 or 10.
+
+    Raises
+    ------
+    ValueError
+        If the order is not 1, 2 or 3.
+
     Examples
     --------
     >>> [min_gcps(n) for n in (1, 2, 3)]
@@ -58,6 +82,23 @@ _minimum_gcps = min_gcps
 
 def term_names(order, variables=("x", "y")):
     """Names of the polynomial's terms in the lecture's order.
+
+    Parameters
+    ----------
+    order : {1, 2, 3}
+        Degree of the polynomial.
+    variables : (str, str)
+        Names of the two input coordinates.
+
+    Returns
+    -------
+    list of str
+        ``min_gcps(order)`` names, "1" for the constant.
+
+    Raises
+    ------
+    ValueError
+        If the order is not 1, 2 or 3.
 
     Examples
     --------
@@ -88,6 +129,11 @@ def design_matrix(points, order):
     -------
     ndarray, shape (n, min_gcps(order))
 
+    Raises
+    ------
+    ValueError
+        If the points are not (n, 2) finite numbers or the order is not 1-3.
+
     Examples
     --------
     >>> design_matrix([[2.0, 3.0]], 2)
@@ -109,8 +155,175 @@ def _normalised_design(points, order, origin=None, scale=None):
     return design_matrix((points - origin) / scale, order), origin, scale
 
 
+class GeometricModel:
+    """The mapping protocol every rsgeo model and distortion follows (after scikit-image).
+
+    A geometric model maps points of one coordinate system (``src``) to
+    another (``dst``). Subclasses define ``__call__`` and
+    :meth:`inverse`; :meth:`residuals` and :meth:`rms` come with the protocol.
+
+    - ``model(points)``: (n, 2) array in, (n, 2) array out;
+    - ``model.residuals(src, dst)``: per-point distance ``|model(src) - dst|``;
+    - ``model.inverse()``: the model of the other direction, with the same protocol.
+
+    References
+    ----------
+    scikit-image, ``skimage.transform``: geometric transforms are
+    callable on (n, 2) arrays and have ``residuals`` and ``inverse``.
+    """
+
+    def __call__(self, points):
+        """Map (n, 2) ``src`` points to (n, 2) ``dst`` points.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+
+        Returns
+        -------
+        ndarray, shape (n, 2)
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: a model defines its own mapping.
+        """
+        raise NotImplementedError(f"{type(self).__name__} does not define its mapping")
+
+    def inverse(self):
+        """The model of the other direction (dst -> src).
+
+        Returns
+        -------
+        GeometricModel
+
+        Raises
+        ------
+        NotImplementedError
+            In the base class: a model defines its own inverse.
+        """
+        raise NotImplementedError(f"{type(self).__name__} does not define its inverse")
+
+    def residuals(self, src, dst):
+        """Distance between where the model puts each ``src`` point and its ``dst`` point.
+
+        The lecture's R_i = sqrt(dx² + dy²), (dx, dy) = model(src_i) - dst_i, in
+        dst units (pixels for a map -> image model).
+
+        Parameters
+        ----------
+        src, dst : (n, 2) array_like
+            The same n points in both coordinate systems.
+
+        Returns
+        -------
+        ndarray, shape (n,)
+
+        Raises
+        ------
+        ValueError
+            If the arrays are not (n, 2) of the same length or hold NaN.
+
+        Examples
+        --------
+        >>> src = np.array([[0, 0], [10, 0], [0, 10]], dtype=float)
+        >>> model = fit_polynomial(src, src + 1, 1)
+        >>> model.residuals(src, src + [[1, 1], [1, 1], [4, 5]]).round(6) + 0.0
+        array([0., 0., 5.])
+        """
+        return _residual_vectors(self, src, dst)[1]
+
+    def rms(self, src, dst):
+        """The lecture's RMS of :meth:`residuals`: sqrt(Σ R_i² / n).
+
+        Parameters
+        ----------
+        src, dst : (n, 2) array_like
+            The same n points (n >= 1) in both coordinate systems.
+
+        Returns
+        -------
+        float
+
+        Raises
+        ------
+        ValueError
+            As :meth:`residuals`, or when there is no point.
+
+        Examples
+        --------
+        >>> src = np.array([[0, 0], [10, 0], [0, 10]], dtype=float)
+        >>> round(fit_polynomial(src, src, 1).rms(src, src + [[3, 4], [0, 0], [0, 0]]), 4)
+        2.8868
+        """
+        predicted, _ = _residual_vectors(self, src, dst)
+        return rms_error(predicted, as_points(dst, "dst"))
+
+
+def _residual_vectors(model, src, dst):
+    """model(src) and |model(src) - dst|, with the inputs checked."""
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    if len(src) != len(dst):
+        raise ValueError(f"src and dst must hold the same points, got {len(src)} and {len(dst)}")
+    predicted = np.asarray(model(src), dtype=np.float64)
+    if predicted.shape != dst.shape:
+        raise ValueError(f"the model must return an (n, 2) array, got shape {predicted.shape}")
+    return predicted, np.hypot(*(predicted - dst).T)
+
+
+class InverseModel(GeometricModel):
+    """The exact inverse of a model, found point by point by solving model(p) = q.
+
+    Made by a model's ``inverse()``; ``inverse()`` of this returns the model.
+
+    Parameters
+    ----------
+    forward : GeometricModel
+        The model inverted.
+    solve : callable
+        (n, 2) dst points -> (n, 2) src points; raises ``ValueError`` where it
+        finds no inverse.
+    """
+
+    def __init__(self, forward, solve):
+        self.forward = forward
+        self._solve = solve
+
+    def __call__(self, points):
+        """The src points that ``forward`` maps onto these dst points.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+
+        Returns
+        -------
+        ndarray, shape (n, 2)
+
+        Raises
+        ------
+        ValueError
+            If the points are not (n, 2) finite numbers, or the solution does
+            not converge (the model folds or is singular there).
+        """
+        return self._solve(as_points(points))
+
+    def inverse(self):
+        """The forward model.
+
+        Returns
+        -------
+        GeometricModel
+        """
+        return self.forward
+
+    def __repr__(self):
+        return f"InverseModel(of {self.forward!r})"
+
+
 @dataclass
-class PolynomialModel:
+class PolynomialModel(GeometricModel):
     """A fitted polynomial mapping from ``src`` to ``dst`` coordinates.
 
     Call it on an (n, 2) array of src points to get the (n, 2) dst points.
@@ -144,15 +357,140 @@ class PolynomialModel:
         return self.coefficients * self.scale**powers
 
     def reverse(self):
-        """The reverse model (dst -> src), fitted separately on the same GCPs, as GDAL does.
+        """The reverse polynomial (dst -> src), fitted separately on the same GCPs, as GDAL does.
 
         A polynomial's inverse is not a polynomial, so GDAL fits both
-        directions by least squares; so does this.
+        directions by least squares (``GDALCreateGCPTransformer``); so does
+        this. It is an approximation of :meth:`inverse` (exact for order 1 on
+        GCPs that fit exactly).
+
+        Returns
+        -------
+        PolynomialModel
+            Fitted from ``dst`` to ``src``, same order.
+
+        Raises
+        ------
+        ValueError
+            As :func:`fit_polynomial` (e.g. the dst points are collinear).
+
+        References
+        ----------
+        GDAL, ``alg/gdal_crs.cpp``: forward and reverse polynomials are
+        both fitted to the GCPs.
         """
         return fit_polynomial(self.dst, self.src, self.order)
 
+    def jacobian(self, points):
+        """Partial derivatives of the model at each point, shape (n, 2, 2).
+
+        ``J[i, k, l]`` = d output_k / d input_l at point i.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+            src points.
+
+        Returns
+        -------
+        ndarray, shape (n, 2, 2)
+
+        Raises
+        ------
+        ValueError
+            If the points are not (n, 2) finite numbers.
+
+        Examples
+        --------
+        >>> src = np.array([[0, 0], [10, 0], [0, 10]], dtype=float)
+        >>> fit_polynomial(src, src * [2, 3], 1).jacobian([[1.0, 1.0]]).round(6) + 0.0
+        array([[[2., 0.],
+                [0., 3.]]])
+        """
+        scaled = (as_points(points) - self.origin) / self.scale
+        x, y = scaled[:, 0], scaled[:, 1]
+        terms = _TERMS[:self.coefficients.shape[1]]
+        d_dx = np.column_stack([px * x**max(px - 1, 0) * y**py for px, py in terms]) / self.scale
+        d_dy = np.column_stack([py * x**px * y**max(py - 1, 0) for px, py in terms]) / self.scale
+        coefficients = self._scaled_coefficients()
+        return np.stack([d_dx @ coefficients.T, d_dy @ coefficients.T], axis=-1)
+
+    def inverse(self, tolerance=1e-9, max_iterations=50):
+        """The exact inverse (dst -> src), by Newton's method on this polynomial.
+
+        Each point starts from :meth:`reverse` (the separately fitted
+        polynomial) and is polished until model(p) = q within ``tolerance``
+        times the GCPs' dst extent. Inside the GCPs' area a well-posed model is
+        one-to-one and this converges in a few steps.
+
+        Parameters
+        ----------
+        tolerance : float
+            Largest accepted ``|model(p) - q|``, relative to the extent of ``dst``.
+        max_iterations : int
+
+        Returns
+        -------
+        InverseModel
+            Callable on (n, 2) dst points; raises ``ValueError`` for points
+            where the polynomial has no inverse (it folds there, or its
+            Jacobian is singular), typically far outside the GCPs.
+
+        Raises
+        ------
+        ValueError
+            If the reverse polynomial cannot be fitted (see :meth:`reverse`).
+
+        Examples
+        --------
+        >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5], [5, 0]], dtype=float)
+        >>> model = fit_polynomial(src, src + 0.01 * src**2, 2)
+        >>> model.inverse()(model([[3.0, 7.0]])).round(9) + 0.0
+        array([[3., 7.]])
+        """
+        start = self.reverse()
+        extent = float(np.abs(self.dst - self.dst.mean(axis=0)).max()) or 1.0
+        limit = check_range(tolerance, "tolerance", low=0, why="relative to the dst extent") * extent
+
+        def solve(targets):
+            points = start(targets)
+            error = np.full(len(targets), np.inf)
+            for _ in range(int(max_iterations)):
+                difference = self(points) - targets
+                error = np.hypot(difference[:, 0], difference[:, 1])
+                if not (error > limit).any():
+                    break
+                jacobian = self.jacobian(points)
+                determinant = np.linalg.det(jacobian)
+                usable = np.abs(determinant) > 1e-300
+                step = np.zeros_like(points)
+                step[usable] = np.linalg.solve(jacobian[usable], difference[usable][..., None])[..., 0]
+                points = points - step
+            failed = ~(error <= limit)
+            if failed.any():
+                first = targets[np.flatnonzero(failed)[0]]
+                raise ValueError(
+                    f"the order-{self.order} polynomial has no inverse at {failed.sum()} of "
+                    f"{len(targets)} points (first: {first.tolist()}): Newton's method did not "
+                    "converge, so the polynomial folds or is singular there; keep the points "
+                    "inside the GCPs' area")
+            return points
+
+        return InverseModel(self, solve)
+
     def standard_errors(self):
-        """Standard error of every coefficient, shape (2, m): see :func:`coefficient_standard_errors`."""
+        """Standard error of every coefficient, shape (2, m): see :func:`coefficient_standard_errors`.
+
+        Returns
+        -------
+        ndarray, shape (2, m)
+            As :func:`coefficient_standard_errors`.
+
+        Raises
+        ------
+        ValueError
+            If the model has no redundant GCP.
+        """
         return coefficient_standard_errors(self)
 
     def coefficient_summary(self, names=("a", "b")):
@@ -161,11 +499,27 @@ class PolynomialModel:
         Columns: ``value``, ``standard error`` and ``|value| / SE`` (how many
         standard errors the coefficient is from zero: under about 2, the GCPs
         cannot tell it from zero). Rows named as in :meth:`coefficient_table`.
+
+        Parameters
+        ----------
+        names : (str, str)
+            Letters of the two outputs' coefficients.
+
+        Returns
+        -------
+        pandas.DataFrame
+            One row per coefficient.
+
+        Raises
+        ------
+        ValueError
+            If the model has no redundant GCP (no standard error) or ``names``
+            is not two strings.
         """
         import pandas as pd
 
-        errors = self.standard_errors()
         index = list(self.coefficient_table(names))
+        errors = self.standard_errors()
         values = self.coefficients.ravel()
         return pd.DataFrame({"value": values, "standard error": errors.ravel(),
                              "|value| / SE": np.abs(values) / errors.ravel()}, index=index)
@@ -174,7 +528,24 @@ class PolynomialModel:
         """Coefficients as {"a0 (1)": value, ...}: term names in the lecture's order.
 
         The variables are measured from the GCPs' mean (``origin``).
+
+        Parameters
+        ----------
+        names : (str, str)
+            Letters of the two outputs' coefficients.
+
+        Returns
+        -------
+        dict
+            ``{"a0 (1)": value, "a1 (x)": value, ...}``, then the b coefficients.
+
+        Raises
+        ------
+        ValueError
+            If ``names`` is not two strings.
         """
+        if len(names) != 2 or not all(isinstance(name, str) for name in names):
+            raise ValueError(f"names must be two strings (one letter per output), got {names!r}")
         table = {}
         for row, letter in enumerate(names):
             for index, term in enumerate(term_names(self.order)):
@@ -296,10 +667,22 @@ def residuals(model, src, dst):
     the position the model gives and the GCP's own position, in dst units
     (pixels when the model goes map -> image).
 
+    Parameters
+    ----------
+    model : callable
+        A model on (n, 2) arrays (e.g. a :class:`PolynomialModel`).
+    src, dst : (n, 2) array_like
+        The GCPs in the model's input and output coordinates.
+
     Returns
     -------
     dx, dy, distance : ndarray
         ``model(src) - dst`` split in its two components, and its length.
+
+    Raises
+    ------
+    ValueError
+        If src and dst are not (n, 2) of the same length or hold NaN.
     """
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
@@ -316,6 +699,16 @@ def rms_error(predicted, observed):
     "the corrected pixels are on average 2 pixels from where they belong"; an
     RMS computed on the fitting GCPs describes those GCPs only: elsewhere the
     error can be larger (use check points or :func:`leave_one_out_errors`).
+
+    Parameters
+    ----------
+    predicted, observed : (n, 2) array_like
+        Where a model puts the points and where they are.
+
+    Returns
+    -------
+    float
+        In the points' units.
 
     Raises
     ------
@@ -343,6 +736,18 @@ def mean_error(predicted, observed, order):
     estimate of the GCPs' error, where the lecture's RMS flatters a model that
     has nearly as many coefficients as GCPs.
 
+    Parameters
+    ----------
+    predicted, observed : (n, 2) array_like
+        Where the model puts the GCPs and where they are.
+    order : {1, 2, 3}
+        Degree of the polynomial.
+
+    Returns
+    -------
+    float
+        In the points' units.
+
     Raises
     ------
     ValueError
@@ -364,7 +769,7 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None):
     """Drop bad GCPs one by one, like ``gdalwarp -refine_gcps tolerance min_gcps``.
 
     GDAL's ``remove_outliers`` (alg/gdal_crs.cpp): fit, find the single GCP
-    with the largest residual |model(src) - dst|; if it is at least
+    with the largest residual ``|model(src) - dst|``; if it is at least
     ``tolerance``, drop it and refit; stop when none is, or when only
     ``min_gcps`` remain.
 
@@ -433,8 +838,8 @@ def _as_flags(flags, name):
     return array
 
 
-def check_point_errors(src, dst, order, is_check):
-    """Errors at independent check points, for a model fitted on the other GCPs.
+def fit_with_check_points(src, dst, order, is_check):
+    """Fit on the GCPs not marked as check points; RMS on the GCPs and on the check points.
 
     The RMS on the fitting GCPs flatters high degrees (with the minimum number
     of GCPs it is zero whatever the model's quality); check points that were
@@ -453,6 +858,12 @@ def check_point_errors(src, dst, order, is_check):
         Fitted on the GCPs.
     fit_rms, check_rms : float
         Lecture's RMS on the fitting GCPs and on the check points.
+
+    Raises
+    ------
+    ValueError
+        If ``is_check`` is not one True/False flag per GCP or marks none,
+        or as :func:`fit_polynomial` for the remaining GCPs.
     """
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
@@ -462,13 +873,20 @@ def check_point_errors(src, dst, order, is_check):
     if not is_check.any():
         raise ValueError("is_check marks no check point; mark at least one GCP as a check point")
     model = fit_polynomial(src[~is_check], dst[~is_check], order)
-    fit_rms = rms_error(model(src[~is_check]), dst[~is_check])
-    check_rms = rms_error(model(src[is_check]), dst[is_check])
+    fit_rms = model.rms(src[~is_check], dst[~is_check])
+    check_rms = model.rms(src[is_check], dst[is_check])
     return model, fit_rms, check_rms
 
 
 def leave_one_out_errors(src, dst, order):
     """Each GCP's error when the model is fitted on all the others.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) array_like
+        The GCPs.
+    order : {1, 2, 3}
+        Degree of the polynomial.
 
     Returns
     -------
@@ -499,7 +917,25 @@ def leave_one_out_errors(src, dst, order):
 
 
 def condition_number(src, order):
-    """Condition number of the (centred, scaled) design matrix: large means badly placed GCPs."""
+    """Condition number of the (centred, scaled) design matrix: large means badly placed GCPs.
+
+    Parameters
+    ----------
+    src : (n, 2) array_like
+        GCP positions in the model's input coordinates.
+    order : {1, 2, 3}
+        Degree of the polynomial.
+
+    Returns
+    -------
+    float
+        Ratio of the largest to the smallest singular value (>= 1).
+
+    Raises
+    ------
+    ValueError
+        If src is not (n, 2) finite numbers or the order is not 1-3.
+    """
     matrix, _, _ = _normalised_design(as_points(src, "src"), order)
     return float(np.linalg.cond(matrix))
 
@@ -509,6 +945,23 @@ def hull_coverage(points, width, height):
 
     The lecture: "a dispersão dos GCPs é muito importante" - a model is only
     trustworthy inside the area its GCPs span.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        GCP image positions (col, row).
+    width, height : float
+        The image's size, pixels.
+
+    Returns
+    -------
+    float
+        0 when the GCPs span no area (collinear or fewer than 3).
+
+    Raises
+    ------
+    ValueError
+        If the points are not (n, 2) finite numbers or the size is not positive.
     """
     from scipy.spatial import ConvexHull, QhullError
 
@@ -547,6 +1000,17 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0):
     -------
     ndarray, shape of x
         Predicted standard deviation of the model at each position.
+
+    Raises
+    ------
+    ValueError
+        If x and y differ in shape, gcp_error is negative, or the GCPs do not
+        determine the polynomial.
+
+    References
+    ----------
+    Draper, N. R. and Smith, H., *Applied Regression Analysis*, the
+    variance of a predicted mean response, Var(ŷ₀) = σ² x₀ᵀ(XᵀX)⁻¹x₀.
     """
     gcp_error = check_range(gcp_error, "gcp_error", low=0, why="a standard deviation in dst units")
     if np.shape(x) != np.shape(y):
@@ -574,6 +1038,19 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
     used: on smooth scenes this avoids the pull towards zero shift that the
     windows' cut edges cause.
 
+    Parameters
+    ----------
+    reference, moving : (rows, cols) array_like
+        The two images, same shape.
+    step : int
+        Spacing of the check points, pixels.
+    window : int
+        Size of the square window compared at each point, pixels.
+    upsample : int
+        Sub-pixel precision: 1 / upsample pixel.
+    taper : bool
+        Hann-tapered cross-correlation instead of phase correlation.
+
     Returns
     -------
     points : ndarray, shape (k, 2)
@@ -587,6 +1064,11 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
         If the images differ in shape, are not 2-D or hold NaN, or step,
         window or upsample is not a positive whole number, or the window is
         larger than the images.
+
+    References
+    ----------
+    Guizar-Sicairos, M., Thurman, S. T. and Fienup, J. R. (2008),
+    "Efficient subpixel image registration algorithms", Optics Letters 33(2).
     """
     from skimage.registration import phase_cross_correlation
 
@@ -865,7 +1347,23 @@ class GCPSet:
         return len(self.map_xy)
 
     def fit(self, order):
-        """Polynomial map -> image (u = f(x, y), v = g(x, y)) on the enabled GCPs."""
+        """Polynomial map -> image (u = f(x, y), v = g(x, y)) on the enabled GCPs.
+
+        Parameters
+        ----------
+        order : {1, 2, 3}
+            Degree of the polynomial.
+
+        Returns
+        -------
+        PolynomialModel
+            Map (x, y) -> image (col, row).
+
+        Raises
+        ------
+        ValueError
+            As :func:`fit_polynomial` (too few or collinear enabled GCPs).
+        """
         return fit_polynomial(self.map_xy[self.enabled], self.image_xy[self.enabled], order)
 
     def table(self, model=None):
@@ -874,6 +1372,21 @@ class GCPSet:
         Columns: id, map x/y, image col/row, enabled, and with a model dx, dy
         (model - GCP, pixels), residual R_i (pixels), and ``residual_map``: the
         residual of the separately fitted reverse model (image -> map), in map units.
+
+        Parameters
+        ----------
+        model : PolynomialModel, optional
+            A map -> image model, e.g. from :meth:`fit`.
+
+        Returns
+        -------
+        pandas.DataFrame
+            Indexed by id.
+
+        Raises
+        ------
+        ValueError
+            If the enabled GCPs cannot determine the reverse model.
         """
         import pandas as pd
 
@@ -898,6 +1411,16 @@ def read_points(path):
     header ``mapX,mapY,sourceX,sourceY,enable,dX,dY,residual`` (older files:
     ``mapX,mapY,pixelX,pixelY,enable``), comma- or tab-separated. ``sourceY``
     is the negative line number; rsgeo's rows count downwards, so row = -sourceY.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.points`` file.
+
+    Returns
+    -------
+    GCPSet
+        With ``crs`` from the ``#CRS:`` line, if any.
 
     Raises
     ------
@@ -940,7 +1463,26 @@ def write_points(path, gcps, model=None):
     With a model (map -> image, as :meth:`GCPSet.fit` returns), the dX, dY and
     residual columns hold its residuals in pixels; QGIS's dY, like sourceY,
     points up, so dY = -(model row - GCP row).
+
+    Parameters
+    ----------
+    path : str or path-like
+        The file to write.
+    gcps : GCPSet
+    model : callable, optional
+        Map -> image model whose residuals fill dX, dY and residual.
+
+    Returns
+    -------
+    None
+
+    Raises
+    ------
+    ValueError
+        If ``gcps`` is not a :class:`GCPSet`, or as :func:`residuals`.
     """
+    if not isinstance(gcps, GCPSet):
+        raise ValueError(f"gcps must be a GCPSet (map_xy, image_xy, enabled), got {type(gcps).__name__}")
     if model is not None:
         dx, dy, distance = residuals(model, gcps.map_xy, gcps.image_xy)
     else:

@@ -8,6 +8,9 @@ import weakref
 
 import numpy as np
 
+from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
+from .resample import bilinear_weights, keys_weights
+
 __all__ = [
     "FIGURE_PROBLEMS", "show_image", "grid_path", "draw_grid", "draw_mesh",
     "draw_neighbour_weights", "draw_stretch_frame", "fix_layout", "animation_html",
@@ -156,7 +159,6 @@ def draw_neighbour_weights(ax, position, method):
     Circle area is proportional to ``|weight|``, red for negative weights (cubic
     convolution's lobes); the cross is the position, in GDAL's (col, row).
     """
-    from .resample import bilinear_weights, keys_weights
 
     col, row = position
     left, top = int(np.floor(col - 0.5)), int(np.floor(row - 0.5))
@@ -220,7 +222,6 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
         If ``axes`` are not three Axes (image problems raise as in
         :func:`rsgeo.radiometry.apply_gain_offset`).
     """
-    from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 
     axes = list(np.ravel(axes))
     if len(axes) != 3:

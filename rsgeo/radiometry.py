@@ -22,6 +22,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import check_choice
+from .resample import interpolate
+
+__all__ = [
+    "FIT_METHODS", "GainOffsetFit", "mean_filter", "fit_gain_offset", "apply_gain_offset",
+    "minmax_stretch", "match_histograms", "overlap", "concatenate_halves", "seam_step",
+    "seam_metrics",
+]
 
 FIT_METHODS = ("ols", "rma", "orthogonal", "theil_sen")
 
@@ -52,8 +59,27 @@ class GainOffsetFit:
     method: str = "ols"
 
     def predict(self, x):
-        """gain·x + offset, as floats."""
-        return self.gain * np.asarray(x, dtype=np.float64) + self.offset
+        """gain·x + offset, as floats.
+
+        Parameters
+        ----------
+        x : array_like
+            DN of the image the fit corrects.
+
+        Returns
+        -------
+        ndarray of float64
+
+        Raises
+        ------
+        ValueError
+            If ``x`` is not numbers.
+        """
+        try:
+            values = np.asarray(x, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"x must be numbers (DN of the image to correct), got {x!r}") from None
+        return self.gain * values + self.offset
 
 
 def _pair(x_image, y_image):
@@ -77,7 +103,25 @@ def _pair(x_image, y_image):
 
 
 def mean_filter(image, size=3):
-    """The paper's low-pass filter: the mean of a size × size window (edges replicate)."""
+    """The paper's low-pass filter: the mean of a size × size window (edges replicate).
+
+    Parameters
+    ----------
+    image : array_like
+        2-D image.
+    size : int
+        Odd window size.
+
+    Returns
+    -------
+    ndarray of float64
+        Same shape.
+
+    Raises
+    ------
+    ValueError
+        If ``size`` is not an odd positive whole number.
+    """
     from scipy.ndimage import uniform_filter
 
     if int(size) != size or size < 1 or size % 2 == 0:
@@ -208,6 +252,20 @@ def minmax_stretch(x_image, y_image):
 
     The ordinary contrast stretch the paper criticises: it has no control of
     gain and offset beyond the two extremes, which a few odd pixels decide.
+
+    Parameters
+    ----------
+    x_image, y_image : ndarray
+        The image to stretch and the reference, same shape.
+
+    Returns
+    -------
+    gain, offset : float
+
+    Raises
+    ------
+    ValueError
+        As :func:`fit_gain_offset`'s input checks, or if ``x_image`` is constant.
     """
     x, y = _pair(x_image, y_image)
     if x.max() == x.min():
@@ -217,12 +275,61 @@ def minmax_stretch(x_image, y_image):
 
 
 def match_histograms(image, reference):
-    """Histogram matching (scikit-image), returned in the image's integer dtype."""
+    """Histogram matching (scikit-image): the image's values remapped to the reference's distribution.
+
+    Parameters
+    ----------
+    image : ndarray
+        The image to change, 2-D or bands first, integer or float, finite.
+    reference : ndarray
+        The image whose histogram it should take (any shape).
+
+    Returns
+    -------
+    ndarray
+        Same shape and dtype as ``image``: integer images are rounded to the
+        nearest integer and clipped to the dtype's range; float images keep
+        the matched values.
+
+    Raises
+    ------
+    ValueError
+        If either image is not numeric, is empty, or holds NaN or infinity.
+
+    References
+    ----------
+    Gonzalez, R. C. and Woods, R. E., *Digital Image Processing*,
+    section "Histogram matching (specification)".
+
+    Examples
+    --------
+    >>> reference = np.array([[10, 20], [30, 40]], dtype=np.uint8)
+    >>> match_histograms(np.array([[0, 1], [2, 3]], dtype=np.uint8), reference)
+    array([[10, 20],
+           [30, 40]], dtype=uint8)
+    >>> match_histograms(np.array([[0.0, 0.1], [0.2, 0.3]]), reference)
+    array([[10., 20.],
+           [30., 40.]])
+    """
     from skimage.exposure import match_histograms as skimage_match
 
-    image = np.asarray(image)
+    arrays = []
+    for name, values in (("image", image), ("reference", reference)):
+        values = np.asarray(values)
+        if values.dtype.kind not in "uif" or values.size == 0:
+            raise ValueError(f"{name} must be a non-empty array of integers or floats, got dtype "
+                             f"{values.dtype} and shape {values.shape}")
+        if not np.isfinite(values).all():
+            raise ValueError(f"{name} holds NaN or infinite values; mask or fill them before "
+                             "matching histograms")
+        arrays.append(values)
+    image, reference = arrays
+    # scikit-image's fast path for unsigned images needs an unsigned reference too
+    source = image if reference.dtype.kind == "u" else image.astype(np.float64)
+    matched = skimage_match(source, reference)
+    if image.dtype.kind == "f":
+        return matched.astype(image.dtype)
     info = np.iinfo(image.dtype)
-    matched = skimage_match(image, np.asarray(reference))
     return np.clip(np.round(matched), info.min, info.max).astype(image.dtype)
 
 
@@ -250,8 +357,6 @@ def overlap(raster_a, raster_b):
     ValueError
         If the CRSs differ or the rasters do not overlap.
     """
-    from .resample import interpolate
-
     if raster_a.crs != raster_b.crs:
         raise ValueError(f"the rasters are in different CRSs ({raster_a.crs} and {raster_b.crs}); "
                          "reproject one first")
@@ -280,23 +385,64 @@ def concatenate_halves(left_image, right_image, split=None):
 
     Both images cover the same ground; columns before ``split`` (default: the
     middle) come from ``left_image``, the rest from ``right_image``.
+
+    Parameters
+    ----------
+    left_image, right_image : ndarray
+        Same shape, same ground.
+    split : int, optional
+        First column taken from ``right_image``.
+
+    Returns
+    -------
+    mosaic : ndarray
+        Same shape as the inputs.
+    split : int
+        The column of the seam.
+
+    Raises
+    ------
+    ValueError
+        If the shapes differ or ``split`` is outside 1 to (columns - 1).
     """
     left_image, right_image = np.asarray(left_image), np.asarray(right_image)
     if left_image.shape != right_image.shape:
         raise ValueError(f"both images must cover the same ground (same shape), got {left_image.shape} "
                          f"and {right_image.shape}")
     split = left_image.shape[-1] // 2 if split is None else int(split)
+    if not 1 <= split <= left_image.shape[-1] - 1:
+        raise ValueError(f"split must leave at least one column on each side (1 to "
+                         f"{left_image.shape[-1] - 1}), got {split}")
     return np.concatenate([left_image[..., :split], right_image[..., split:]], axis=-1), split
 
 
 def seam_step(mosaic, split, width=3):
-    """Brightness step across a vertical seam: |mean of `width` columns right − left|, in DN.
+    """Brightness step across a vertical seam: ``|mean of width columns right − left|``, in DN.
 
     Over ground that continues across the seam, a step means the two halves
     have different contrast; after a good correction it is near the natural
     variation between neighbouring columns. On one noisy seam that variation
     dominates (a few hundred pixels per side): prefer :func:`seam_metrics`,
     which compares the two images over their whole common ground.
+
+    Parameters
+    ----------
+    mosaic : array_like
+        The mosaic, 2-D or bands first.
+    split : int
+        The seam's column.
+    width : int
+        Columns averaged on each side.
+
+    Returns
+    -------
+    float
+        DN, ≥ 0.
+
+    Raises
+    ------
+    ValueError
+        If the seam leaves fewer than ``width`` columns on one side.
     """
     mosaic = np.asarray(mosaic, dtype=np.float64)
     if not width <= split <= mosaic.shape[-1] - width:

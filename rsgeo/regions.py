@@ -17,6 +17,11 @@ import numpy as np
 
 from ._checks import as_image
 
+__all__ = [
+    "Segments", "centroids_and_areas", "forest_segments", "group_segments", "keep_largest",
+    "ndvi",
+]
+
 
 @dataclass
 class Segments:
@@ -40,14 +45,63 @@ class Segments:
         return len(self.areas)
 
     def map_centroids(self, transform):
-        """Centroids in map coordinates through a geotransform (affine.Affine)."""
+        """Centroids in map coordinates through a geotransform (affine.Affine).
+
+        Parameters
+        ----------
+        transform : affine.Affine
+            Pixel (col, row) -> map (x, y).
+
+        Returns
+        -------
+        ndarray, shape (n, 2)
+            Map (x, y) of each centroid.
+
+        Raises
+        ------
+        ValueError
+            If ``transform`` is not an affine.Affine.
+        """
+        if not all(hasattr(transform, key) for key in "abcdef"):
+            raise ValueError(f"transform must be an affine.Affine geotransform (pixel -> map), "
+                             f"got {type(transform).__name__}")
         x, y = transform @ (self.centroids[:, 0], self.centroids[:, 1])
         return np.column_stack([x, y])
 
 
-def measure(labels):
-    """Centroids ((col, row), pixel centres at +0.5) and areas of labels 1..n."""
+def centroids_and_areas(labels):
+    """Centroid and area of every labelled segment 1..n of a label image.
+
+    A centroid is the mean of the segment's pixel centres in GDAL's continuous
+    (col, row) coordinates (the centre of ``labels[r, c]`` is (c + 0.5, r + 0.5)).
+
+    Parameters
+    ----------
+    labels : ndarray of int
+        0 = background, 1..n = segments, every label present.
+
+    Returns
+    -------
+    centroids : ndarray, shape (n, 2)
+        (col, row) of each segment's centroid.
+    areas : ndarray, shape (n,)
+        Pixels in each segment.
+
+    Raises
+    ------
+    ValueError
+        If the labels are not integers, are negative, or skip a number.
+
+    Examples
+    --------
+    >>> centroids, areas = centroids_and_areas(np.array([[1, 1, 0], [0, 0, 2]]))
+    >>> centroids.tolist(), areas.tolist()
+    ([[1.0, 0.5], [2.5, 1.5]], [2.0, 1.0])
+    """
     labels = np.asarray(labels)
+    if labels.dtype.kind not in "ui" or labels.size == 0 or labels.min() < 0:
+        raise ValueError(f"labels must be a non-empty image of non-negative integers (0 = background, "
+                         f"1..n = segments), got dtype {labels.dtype} and shape {labels.shape}")
     count = int(labels.max())
     rows, cols = np.indices(labels.shape)
     flat = labels.ravel()
@@ -109,7 +163,7 @@ def forest_segments(image, threshold=None, min_area=30, smooth_sigma=1.0, openin
     labels = relabel[labels]
     if labels.max() == 0:
         raise ValueError(f"no forest segment of at least {min_area} pixels above threshold {threshold:.3g}")
-    centroids, areas = measure(labels)
+    centroids, areas = centroids_and_areas(labels)
     return Segments(labels, centroids, areas)
 
 
@@ -120,10 +174,26 @@ def group_segments(segments, n_groups):
     needed: nearby segments merge first), then each region's centroid is the
     area-weighted mean of its members' and its area their sum.
 
+    Parameters
+    ----------
+    segments : Segments
+    n_groups : int
+        Regions wanted, 1 to ``len(segments)``.
+
     Returns
     -------
     Segments
         Labels 1..n_groups over the same image.
+
+    Raises
+    ------
+    ValueError
+        If ``n_groups`` is outside 1 to ``len(segments)``.
+
+    References
+    ----------
+    Ward, J. H. (1963), "Hierarchical grouping to optimize an objective
+    function", Journal of the American Statistical Association 58, 236-244.
     """
     from scipy.cluster.hierarchy import fcluster, linkage
 
@@ -139,7 +209,7 @@ def group_segments(segments, n_groups):
     lookup = np.zeros(len(segments) + 1, dtype=np.int32)
     lookup[1:] = renumber[groups]
     labels = lookup[segments.labels]
-    centroids, areas = measure(labels)
+    centroids, areas = centroids_and_areas(labels)
     return Segments(labels, centroids, areas)
 
 
@@ -148,6 +218,22 @@ def keep_largest(segments, count):
 
     Small segments are the least stable across dates, sensors and
     resolutions: keeping the largest is a simple alternative to grouping.
+
+    Parameters
+    ----------
+    segments : Segments
+    count : int
+        Segments kept, 1 to ``len(segments)``.
+
+    Returns
+    -------
+    Segments
+        Largest first.
+
+    Raises
+    ------
+    ValueError
+        If ``count`` is outside 1 to ``len(segments)``.
     """
     if not 1 <= count <= len(segments):
         raise ValueError(f"count must be between 1 and the number of segments ({len(segments)}), got {count}")
@@ -158,7 +244,28 @@ def keep_largest(segments, count):
 
 
 def ndvi(red, nir):
-    """Normalised difference vegetation index (NIR − red) / (NIR + red); 0 where both are 0."""
+    """Normalised difference vegetation index (NIR − red) / (NIR + red); 0 where both are 0.
+
+    Parameters
+    ----------
+    red, nir : array_like
+        Red and near-infrared bands, same shape.
+
+    Returns
+    -------
+    ndarray of float64
+        -1 to 1.
+
+    Raises
+    ------
+    ValueError
+        If the bands differ in shape.
+
+    References
+    ----------
+    Rouse, J. W., Haas, R. H., Schell, J. A. and Deering, D. W. (1974),
+    "Monitoring vegetation systems in the Great Plains with ERTS", NASA SP-351.
+    """
     red = np.asarray(red, dtype=np.float64)
     nir = np.asarray(nir, dtype=np.float64)
     if red.shape != nir.shape:

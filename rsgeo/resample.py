@@ -61,6 +61,12 @@ from numba import njit, prange  # noqa: E402
 
 from ._checks import as_image, check_choice
 
+__all__ = [
+    "METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
+    "check_num_threads", "check_nodata", "check_bands_first", "check_shape", "grid_positions",
+    "warp",
+]
+
 METHODS = ("nearest", "bilinear", "cubic")
 
 # A margin GDAL adds before truncating a position to a pixel index, so that a
@@ -142,7 +148,7 @@ def cubic_kernel(s, a=-0.5):
     Returns
     -------
     ndarray
-        W(s): 1 at s = 0, 0 at every other integer, 0 for |s| >= 2.
+        W(s): 1 at s = 0, 0 at every other integer, 0 for ``|s| >= 2``.
 
     Examples
     --------

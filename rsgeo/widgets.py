@@ -19,6 +19,7 @@ import weakref
 import numpy as np
 
 from . import distortion, gcp, matching, radiometry
+from ._checks import check_choice
 from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
 
 __all__ = [
@@ -237,7 +238,7 @@ def gcp_explorer(gcps, order=1, index=0):
         image_xy[which.value] += (dcol.value, drow.value)
         model = gcp.fit_polynomial(gcps.map_xy, image_xy, degree.value)
         _, _, distance = gcp.residuals(model, gcps.map_xy, image_xy)
-        rms = gcp.rms_error(model(gcps.map_xy), image_xy)
+        rms = model.rms(gcps.map_xy, image_xy)
         for i, (bar, height) in enumerate(zip(bars, distance)):
             bar.set_height(height)
             bar.set_facecolor("tab:red" if i == which.value else "tab:blue")
@@ -286,7 +287,6 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
     """
     import ipywidgets as widgets
 
-    from ._checks import check_choice
 
     if size not in sizes:
         raise ValueError(f"size {size!r} must be one of the offered sizes {tuple(sizes)}")

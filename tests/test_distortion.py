@@ -2,6 +2,8 @@
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from rsgeo import data, distortion, gcp
 
@@ -87,11 +89,13 @@ def test_simulate_then_correct_a_real_scene():
 
 
 def test_panoramic_model_inverts_exactly():
-    model = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0, yaw_rate_deg_per_line=0.01)
+    model = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0, yaw_rate_deg_per_line=0.01,
+                                            shape=(800, 1000))
     rng = np.random.default_rng(0)
-    cols, rows = rng.uniform(0, 1000, 500), rng.uniform(0, 800, 500)
-    back = model.image_to_true(*model.true_to_image(cols, rows, (800, 1000)), (800, 1000))
-    np.testing.assert_allclose(back, (cols, rows), atol=1e-8)
+    points = np.column_stack([rng.uniform(0, 1000, 500), rng.uniform(0, 800, 500)])
+    np.testing.assert_allclose(model.inverse()(model(points)), points, atol=1e-8)
+    assert model.inverse().residuals(model(points), points).max() < 1e-8
+    assert model.inverse().inverse() is model
 
 
 def test_roll_shifts_the_scan_angle_so_the_ground_moves_more_at_the_edge():
@@ -121,16 +125,16 @@ def test_simulator_applies_roll_in_scan_angle_space():
     plain = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0)
     rolled = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0, roll_px=1.0)
     cols = 1000 + np.radians([0.0, 55.0]) * 705.0
-    rows = np.full(2, 5.0)
-    moved = rolled.image_to_true(cols, rows, shape)[0] - plain.image_to_true(cols, rows, shape)[0]
+    points = np.column_stack([cols, np.full(2, 5.0)])
+    moved = (rolled.on_grid(shape).inverse()(points) - plain.on_grid(shape).inverse()(points))[:, 0]
     expected = -distortion.attitude_displacement(-np.degrees(1 / 705.0), 705.0,
                                                  scan_angle_deg=[0.0, 55.0])
     np.testing.assert_allclose(moved, -expected, rtol=1e-9)
     assert moved[1] / moved[0] == pytest.approx(4.8, abs=0.1)
     in_degrees = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
                                                  roll_deg=np.degrees(1 / 705.0))
-    np.testing.assert_allclose(in_degrees.image_to_true(cols, rows, shape),
-                               rolled.image_to_true(cols, rows, shape))
+    np.testing.assert_allclose(in_degrees.on_grid(shape).inverse()(points),
+                               rolled.on_grid(shape).inverse()(points))
 
 
 def test_attitude_model_inverts_exactly():
@@ -138,9 +142,9 @@ def test_attitude_model_inverts_exactly():
                                             yaw_deg=1.0, yaw_rate_deg_per_line=0.002, view_altitude_km=705.0,
                                             nadir_pixel_km=1.0, roll_deg=0.3, pitch_deg=-0.2)
     rng = np.random.default_rng(1)
-    cols, rows = rng.uniform(0, 2400, 500), rng.uniform(0, 100, 500)
-    back = model.image_to_true(*model.true_to_image(cols, rows, (100, 2400)), (100, 2400))
-    np.testing.assert_allclose(back, (cols, rows), atol=1e-8)
+    points = np.column_stack([rng.uniform(0, 2400, 500), rng.uniform(0, 100, 500)])
+    model = model.on_grid((100, 2400))
+    np.testing.assert_allclose(model.inverse()(model(points)), points, atol=1e-8)
 
 
 def test_skew_direction_is_west_on_both_passes():
@@ -204,3 +208,41 @@ def test_frame_outline_moves_the_last_line_west(pass_direction, sign):
                                                                      pass_direction))
     assert moved[0] < 0
     assert np.sign(north0[2] - north0[1]) == sign                        # south first on a descending pass
+
+
+def test_a_folding_yaw_rate_raises_instead_of_returning_a_wrong_point():
+    # 5°/line turns the lines so fast that the grid folds over itself: (10, 200) on a 300 × 300
+    # grid used to come back as a point that maps to (32.4, 59.1)
+    model = distortion.SystematicDistortion(yaw_rate_deg_per_line=5.0, shape=(300, 300))
+    with pytest.raises(ValueError, match="no single true position"):
+        model.inverse()([[10.0, 200.0]])
+    # near nadir (closer than 1 / rate = 11.5 px) the inverse is still unique and exact
+    near = np.array([[151.0, 148.0], [155.0, 153.0]])
+    np.testing.assert_allclose(model(model.inverse()(near)), near, atol=1e-9)
+    image = np.arange(300 * 300, dtype=np.float64).reshape(300, 300)
+    with pytest.warns(RuntimeWarning, match="no true position"):
+        recorded = distortion.simulate(image, model, nodata=-1.0)
+    assert (recorded == -1.0).mean() > 0.5
+
+
+def test_the_protocol_needs_the_grid_and_a_matching_image():
+    model = distortion.SystematicDistortion(yaw_deg=2.0)
+    with pytest.raises(ValueError, match="on_grid"):
+        model([[1.0, 2.0]])
+    with pytest.raises(ValueError, match="set on a"):
+        distortion.correct(np.zeros((10, 12)), model.on_grid((12, 10)))
+    with pytest.raises(ValueError, match="two positive whole numbers"):
+        model.on_grid((0, 5))
+
+
+@settings(max_examples=60, deadline=None)
+@given(col=st.floats(0, 600), row=st.floats(0, 400), yaw=st.floats(-10, 10),
+       rate=st.floats(-0.01, 0.01), skew=st.floats(-0.2, 0.2), scale=st.floats(0.8, 1.25),
+       roll=st.floats(-0.5, 0.5), panoramic=st.booleans())
+def test_every_systematic_distortion_inverts_exactly(col, row, yaw, rate, skew, scale, roll, panoramic):
+    geometry = {"view_altitude_km": 705.0, "nadir_pixel_km": 1.0, "roll_deg": roll} if panoramic else {}
+    model = distortion.SystematicDistortion(skew_per_line=skew, scale=scale, yaw_deg=yaw,
+                                            yaw_rate_deg_per_line=rate, shape=(400, 600), **geometry)
+    point = np.array([[col, row]])
+    np.testing.assert_allclose(model.inverse()(model(point)), point, atol=1e-6)
+    np.testing.assert_allclose(model(model.inverse()(point)), point, atol=1e-6)

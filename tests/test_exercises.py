@@ -227,7 +227,7 @@ CHECKS = {
     "blunder": (lambda a: exercises.check_blunder(a, georeferencing()[0], order=2),
                 lambda: georeferencing()[3]["residual"].idxmax(), None),
     "degree": (lambda a: exercises.check_degree_choice(a, *georeferencing()[4:]),
-               lambda: min((1, 2, 3), key=lambda n: gcp.check_point_errors(
+               lambda: min((1, 2, 3), key=lambda n: gcp.fit_with_check_points(
                    georeferencing()[4].map_xy, georeferencing()[4].image_xy, n,
                    georeferencing()[5])[2]), None),
     "bilinear": (lambda a: exercises.check_bilinear(a, WINDOW, DX, DY), bilinear, bilinear),

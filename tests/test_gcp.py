@@ -3,6 +3,8 @@
 import affine
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from rasterio.control import GroundControlPoint
 from rasterio.transform import GCPTransformer
 
@@ -73,12 +75,76 @@ def test_exact_with_the_minimum_number_of_gcps():
         np.testing.assert_allclose(model(map_xy), image_xy, atol=1e-6)
 
 
-def test_reverse_is_fitted_separately():
+def test_reverse_is_the_least_squares_fit_of_the_other_direction():
+    # GDAL fits image -> map separately: the reverse's residuals must satisfy the normal equations
+    # of the image -> map system (orthogonal to every term), and differ from the forward's inverse
     image_xy, map_xy = utm_gcps(12, seed=3)
     model = gcp.fit_polynomial(map_xy, image_xy, 2)
     reverse = model.reverse()
-    np.testing.assert_allclose(reverse.src, image_xy)
-    assert gcp.rms_error(reverse(image_xy), map_xy) < 40
+    centred = (image_xy - image_xy.mean(axis=0)) / 1000
+    terms = gcp.design_matrix(centred, 2)
+    left_over = reverse(image_xy) - map_xy
+    assert np.abs(terms.T @ left_over).max() < 1e-6 * np.abs(left_over).max() * len(terms)
+    assert 5 < reverse.rms(image_xy, map_xy) < 40          # GCP noise of 15 m, not zero
+    # swapping back gives the forward model again
+    np.testing.assert_allclose(reverse.reverse()(map_xy), model(map_xy), atol=1e-6)
+
+
+def test_inverse_undoes_the_model_where_the_reverse_fit_does_not():
+    image_xy, map_xy = utm_gcps(12, seed=3)
+    model = gcp.fit_polynomial(map_xy, image_xy, 2)
+    inside = map_xy.mean(axis=0) + np.random.default_rng(0).uniform(-4000, 4000, (50, 2))
+    np.testing.assert_allclose(model.inverse()(model(inside)), inside, atol=1e-6)
+    assert model.inverse().inverse() is model
+    assert model.inverse().residuals(model(inside), inside).max() < 1e-6
+    assert np.abs(model.reverse()(model(inside)) - inside).max() > 0.01     # only approximate
+
+
+def test_jacobian_matches_finite_differences():
+    image_xy, map_xy = utm_gcps(20, seed=4)
+    model = gcp.fit_polynomial(map_xy, image_xy, 3)
+    point = map_xy[:3]
+    step = 1e-2
+    numeric = np.stack([(model(point + [step, 0]) - model(point - [step, 0])) / (2 * step),
+                        (model(point + [0, step]) - model(point - [0, step])) / (2 * step)], axis=-1)
+    np.testing.assert_allclose(model.jacobian(point), numeric, rtol=1e-6, atol=1e-9)
+
+
+def test_inverse_refuses_points_where_the_polynomial_folds():
+    src = np.array([[x, y] for x in (-1.0, 0.0, 1.0) for y in (-1.0, 0.0, 1.0)])
+    u = src[:, 0] + 0.8 * src[:, 0] ** 2                   # never below -0.3125 (at x = -0.625)
+    model = gcp.fit_polynomial(src, np.column_stack([u, src[:, 1]]), 2)
+    with pytest.raises(ValueError, match="no inverse"):
+        model.inverse()([[-1.0, 0.0]])
+
+
+def test_residuals_and_rms_are_the_protocols():
+    image_xy, map_xy = utm_gcps(12, seed=8)
+    model = gcp.fit_polynomial(map_xy, image_xy, 1)
+    dx, dy, distance = gcp.residuals(model, map_xy, image_xy)
+    np.testing.assert_allclose(model.residuals(map_xy, image_xy), np.hypot(dx, dy))
+    np.testing.assert_allclose(model.residuals(map_xy, image_xy), distance)
+    expected = np.sqrt(np.mean(np.sum((model(map_xy) - image_xy) ** 2, axis=1)))
+    assert model.rms(map_xy, image_xy) == pytest.approx(expected, rel=1e-12)
+    assert model.rms(map_xy, image_xy) > 0.1
+    with pytest.raises(ValueError, match="same points"):
+        model.residuals(map_xy, image_xy[:-1])
+
+
+@settings(max_examples=60, deadline=None)
+@given(order=st.sampled_from([1, 2, 3]), seed=st.integers(0, 10_000),
+       u=st.floats(0.1, 0.9), v=st.floats(0.1, 0.9), bend=st.floats(-0.15, 0.15))
+def test_every_polynomial_inverse_round_trips(order, seed, u, v, bend):
+    # a smooth, one-to-one map -> image mapping, sampled at enough GCPs for the order
+    rng = np.random.default_rng(seed)
+    image_xy = rng.uniform(0, 1000, (gcp.min_gcps(order) + 6, 2))
+    c, r = image_xy[:, 0] / 1000, image_xy[:, 1] / 1000
+    map_xy = np.column_stack([500_000 + 20_000 * (c + bend * r * r), 7_400_000 - 20_000 * (r + bend * c * r)])
+    model = gcp.fit_polynomial(map_xy, image_xy, order)
+    inside = np.array([[500_000 + 20_000 * u, 7_400_000 - 20_000 * v]])
+    np.testing.assert_allclose(model.inverse()(model(inside)), inside, rtol=0, atol=1e-5)
+    image_point = model(inside)
+    np.testing.assert_allclose(model(model.inverse()(image_point)), image_point, rtol=0, atol=1e-6)
 
 
 def test_rms_and_mean_error_by_hand():
@@ -263,9 +329,9 @@ def test_offsets_against_reference_recover_a_shifted_geotransform():
     (lambda: gcp.mean_error(np.ones((5, 2)), np.zeros((1, 2)), 1), "same shape"),
     (lambda: gcp.mean_error(np.ones((5, 2)), np.full((5, 2), np.nan), 1), "NaN"),
     (lambda: gcp.refine_gcps(*utm_gcps(8, seed=1), 1, 5.0, min_gcps=9), "exceeds the number"),
-    (lambda: gcp.check_point_errors(*utm_gcps(8, seed=1), 1, [0, 0.5, 0, 0, 0, 1, 0, 0]),
+    (lambda: gcp.fit_with_check_points(*utm_gcps(8, seed=1), 1, [0, 0.5, 0, 0, 0, 1, 0, 0]),
      "True/False"),
-    (lambda: gcp.check_point_errors(*utm_gcps(8, seed=1), 1, [0, np.nan, 0, 0, 0, 1, 0, 0]),
+    (lambda: gcp.fit_with_check_points(*utm_gcps(8, seed=1), 1, [0, np.nan, 0, 0, 0, 1, 0, 0]),
      "True/False"),
     (lambda: gcp.leave_one_out_errors(np.random.default_rng(0).random((6, 2)),
                                       np.random.default_rng(1).random((7, 2)), 1), "same GCPs"),

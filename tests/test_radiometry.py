@@ -189,3 +189,21 @@ def test_regression_widget_reaches_the_chosen_fit():
         plt.close("all")
     with pytest.raises(ValueError, match="offered sizes"):
         regression_stretch(pair.x_image, pair.y_image, size=4)
+
+
+def test_match_histograms_works_on_floats_and_refuses_nan():
+    # it used to fail inside np.iinfo on a float image
+    rng = np.random.default_rng(0)
+    reference = rng.normal(100.0, 20.0, (50, 50))
+    image = rng.normal(0.0, 1.0, (40, 40)).astype(np.float32)
+    matched = radiometry.match_histograms(image, reference)
+    assert matched.dtype == np.float32 and matched.shape == image.shape
+    assert matched.mean() == pytest.approx(reference.mean(), abs=2.0)
+    assert matched.std() == pytest.approx(reference.std(), rel=0.1)
+    assert np.array_equal(np.argsort(matched.ravel(), kind="stable"), np.argsort(image.ravel(), kind="stable"))
+    integers = radiometry.match_histograms(rng.integers(0, 50, (40, 40)).astype(np.uint8), reference)
+    assert integers.dtype == np.uint8 and integers.mean() == pytest.approx(reference.mean(), abs=3.0)
+    with pytest.raises(ValueError, match="image holds NaN"):
+        radiometry.match_histograms(np.where(image > 1, np.nan, image), reference)
+    with pytest.raises(ValueError, match="integers or floats"):
+        radiometry.match_histograms(image, np.array([["a"]]))

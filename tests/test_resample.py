@@ -128,12 +128,6 @@ def test_cubic_reproduces_quadratics_in_the_interior(a, b, cxx, cxy, cyy):
     np.testing.assert_allclose(got, expected, atol=1e-8)
 
 
-def test_keys_weights_sum_to_one_and_interpolate():
-    t = np.linspace(0, 0.999, 50)
-    np.testing.assert_allclose(keys_weights(t).sum(axis=0), 1.0)
-    np.testing.assert_allclose(keys_weights(t, a=-0.75).sum(axis=0), 1.0)
-
-
 @pytest.mark.parametrize("kwargs, message", [
     (dict(cols=[np.nan], rows=[1.0]), "NaN or infinite"),
     (dict(cols=[np.inf], rows=[1.0]), "NaN or infinite"),
@@ -310,3 +304,23 @@ def test_avoid_nodata_on_every_integer_edge_case():
     floats = np.full((6, 6), 2.5, dtype=np.float32)
     assert interpolate(floats, [3.0], [3.0], "bilinear", nodata=2.5)[0] == np.nextafter(
         np.float32(2.5), np.float32(np.inf))
+
+
+def test_keys_weights_reproduce_quadratics_and_match_keys_closed_form():
+    # Keys (1981): with a = -0.5 cubic convolution reproduces every polynomial up to degree 2;
+    # pixels at offsets -1, 0, 1, 2 from the pixel left of the position, t in [0, 1).
+    t = np.linspace(0, 0.999, 37)
+    offsets = np.array([-1.0, 0.0, 1.0, 2.0])[:, None]
+    weights = keys_weights(t)
+    for power in (0, 1, 2):
+        np.testing.assert_allclose((weights * offsets**power).sum(axis=0), t**power, atol=1e-12)
+    # Keys' eq. 15 written out independently: the four weights as cubics in t
+    expected = np.stack([(-t**3 + 2 * t**2 - t) / 2, (3 * t**3 - 5 * t**2 + 2) / 2,
+                         (-3 * t**3 + 4 * t**2 + t) / 2, (t**3 - t**2) / 2])
+    np.testing.assert_allclose(weights, expected, atol=1e-15)
+    # OpenCV's a = -0.75 keeps constants, is symmetric, but bends a straight line (only a = -0.5
+    # reproduces it)
+    opencv = keys_weights(t, a=-0.75)
+    np.testing.assert_allclose(opencv.sum(axis=0), 1.0, atol=1e-12)
+    np.testing.assert_allclose(keys_weights(0.5, a=-0.75), [-0.09375, 0.59375, 0.59375, -0.09375])
+    assert np.abs((opencv * offsets).sum(axis=0) - t).max() > 0.01

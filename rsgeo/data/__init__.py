@@ -26,6 +26,12 @@ from pathlib import Path
 
 import numpy as np
 
+from .._checks import as_image
+from ..gcp import read_points
+from ..resample import check_bands_first
+
+__all__ = ["Raster", "available", "path", "load", "available_gcps", "load_gcps", "save"]
+
 _FOLDER = Path(__file__).parent
 
 # name: (file, description)
@@ -128,17 +134,32 @@ class Raster:
 
     @property
     def pixel_size(self):
-        """(x, y) size of a pixel in map units, both positive."""
+        """(x, y) size of a pixel in map units, both positive.
+
+        Returns
+        -------
+        (float, float)
+        """
         return (abs(self.transform.a), abs(self.transform.e))
 
     @property
     def shape(self):
-        """(rows, cols)."""
+        """(rows, cols).
+
+        Returns
+        -------
+        (int, int)
+        """
         return self.array.shape[-2:]
 
     @property
     def bounds(self):
-        """(left, bottom, right, top) in map units."""
+        """(left, bottom, right, top) in map units.
+
+        Returns
+        -------
+        (float, float, float, float)
+        """
         from rasterio.transform import array_bounds
 
         west, south, east, north = array_bounds(self.shape[0], self.shape[1], self.transform)
@@ -146,7 +167,13 @@ class Raster:
 
 
 def available():
-    """Names of the shipped datasets, for :func:`load`."""
+    """Names of the shipped datasets, for :func:`load`.
+
+    Returns
+    -------
+    list of str
+        Sorted.
+    """
     return sorted(_DATASETS)
 
 
@@ -220,7 +247,13 @@ def load(name):
 
 
 def available_gcps():
-    """Names of the shipped GCP sets, for :func:`load_gcps`."""
+    """Names of the shipped GCP sets, for :func:`load_gcps`.
+
+    Returns
+    -------
+    list of str
+        Sorted.
+    """
     return sorted(_GCP_FILES)
 
 
@@ -229,9 +262,22 @@ def load_gcps(name):
 
     ``"cbers2b_ccd_hrc"``: 14 GCPs of the CCD scene ``cbers2b_rgb342`` (image
     col, row) against the HRC scene ``cbers2b_hrc`` used as the map.
-    """
-    from ..gcp import read_points
 
+    Parameters
+    ----------
+    name : str
+        One of :func:`available_gcps`.
+
+    Returns
+    -------
+    GCPSet
+        With ids "G01", "G02", ... and a note per GCP.
+
+    Raises
+    ------
+    ValueError
+        For an unknown name; the message lists the available ones.
+    """
     if name not in _GCP_FILES:
         raise ValueError(f"unknown GCP set {name!r}; available: {', '.join(available_gcps())}")
     file, notes = _GCP_FILES[name]
@@ -282,9 +328,6 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
     (500000.0, 10.0, 31983)
     """
     import rasterio
-
-    from .._checks import as_image
-    from ..resample import check_bands_first
 
     if isinstance(raster_or_array, Raster):
         array, transform, crs, nodata = (raster_or_array.array, raster_or_array.transform,
