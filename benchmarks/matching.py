@@ -1,103 +1,96 @@
 """Region matching: each solver's success and time, and each fitness's optimum, on seeded meshes.
 
-    python benchmarks/matching.py [--sizes 5 8 12] [--seeds 30] [--no-real]
+    python benchmarks/matching.py [--sizes 5 8 12] [--seeds 100] [--fitness-seeds 30] [--no-real]
 
 Writes three tables under benchmarks/results/ (chapter 6 of the book loads and shows them),
-each CSV opening with '#' lines that give the command, the seeds and the machine:
+each CSV opening with '# key: value' lines that give the command, the seeds and the machine.
+The experiments themselves live in rsgeo.experiments (the chapter's live run calls the same code):
 
-- matching_solvers.csv: rsgeo.matching.success_table: the paper's binary GA, an integer-coded
-  GA and SciPy's quadratic assignment (FAQ, 20 restarts) on synthetic meshes of each size, with
-  exact-match rate, share of segments matched right, mean and worst seconds per run.
-- matching_fitness.csv: rsgeo.matching.fitness_comparison: how often the exhaustive optimum of
-  the paper's fitness and of the "compact" variant is the true matching, and how often the
-  paper's GA searching each finds the truth (n = 5 and 6, a = 0.5 and 0.7, as-is and with one
-  segment at 31 % of its area).
-- matching_real.csv: the same for chapter 6's real scene (CBERS-2B CCD NDVI, 20 m, against a
-  30 m copy rotated 5° and shifted): exhaustive search over all 9^8 solutions (minutes) and
-  the GA with each of the seeds. --no-real skips it.
+- matching_solvers.csv: rsgeo.experiments.success_table: the paper's binary GA, an integer-coded
+  GA and SciPy's quadratic assignment (FAQ, 20 restarts) on synthetic meshes of each size (100
+  seeds): how often each reaches the optimum of the paper's fitness over all (n + 1)^n solutions
+  (certified by branch and bound, rsgeo.matching.optimum_match; the "optimum" column says in how
+  many seeds) and the true matching, with mean and worst seconds per run.
+- matching_fitness.csv: rsgeo.experiments.fitness_comparison: how often the exhaustive optimum
+  of the paper's fitness and of the "compact" variant is the true matching, and how often the
+  paper's GA searching each finds the truth and the optimum (n = 5 and 6, a = 0.5 and 0.7, as-is
+  and with one segment at 31 % of its area; 30 seeds).
+- matching_real.csv: rsgeo.experiments.real_table: the same for chapter 6's real scene (CBERS-2B
+  CCD NDVI, 20 m, against a 30 m copy rotated 5° and shifted): exhaustive search over all 9^8
+  solutions and the GA with each of the seeds. --no-real skips it.
 """
 
 import argparse
+import os
 import platform
 import sys
 import time
 from datetime import date
 from pathlib import Path
 
-import affine
+import numba
 import numpy as np
 import pandas as pd
+import scipy
 
-from rsgeo import data, matching, regions, resample
+import rsgeo
+from rsgeo import experiments
 
 RESULTS = Path(__file__).resolve().parent / "results"
 
 
-def real_scene():
-    """Chapter 6's real scene: reference and adjustment meshes, and the true matching."""
-    ccd = data.load("cbers2b_rgb342")
-    vegetation = regions.ndvi(ccd.array[0], ccd.array[1])
-    centre = ccd.transform @ (ccd.shape[1] / 2, ccd.shape[0] / 2)
-    adjustment_transform = (affine.Affine.translation(centre[0] + 150, centre[1] - 90)
-                            @ affine.Affine.rotation(5)
-                            @ affine.Affine(30, 0, -106 * 30, 0, -30, 106 * 30))
-    adjustment = resample.warp(vegetation, ~ccd.transform, (212, 212), adjustment_transform,
-                               method="bilinear", nodata=-1.0)
-    reference = regions.keep_largest(
-        regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
-    moved = regions.keep_largest(regions.forest_segments(adjustment, threshold=0.55, min_area=11), 8)
-    to_reference = ~ccd.transform @ adjustment_transform
-    mapped = np.column_stack(to_reference @ (moved.centroids[:, 0], moved.centroids[:, 1]))
-    truth, _ = matching.true_matching(reference.centroids, mapped, tolerance=10)
-    return (matching.Mesh(reference.centroids, reference.areas, pixel_size=20),
-            matching.Mesh(moved.centroids, moved.areas, pixel_size=30), truth)
-
-
-def real_table(seeds):
-    reference, adjustment, truth = real_scene()
-    rows = []
-    for variant in matching.VARIANTS:
-        best = matching.exhaustive_match(reference, adjustment, one_to_one=False, variant=variant)
-        runs = [matching.genetic_match(reference, adjustment, seed=seed, variant=variant).solution
-                for seed in seeds]
-        rows.append({"case": "CBERS-2B CCD, 20 m against 30 m", "n": len(adjustment), "a": 0.5,
-                     "fitness": variant, "runs": len(seeds), "truth": str(truth.tolist()),
-                     "FA of the truth": matching.fitness(truth, reference, adjustment, variant=variant),
-                     "optimum": str(best.solution.tolist()), "FA of the optimum": best.fitness,
-                     "optimum is the truth (%)": 100.0 * np.array_equal(best.solution, truth),
-                     "GA finds the truth (%)": 100 * np.mean([np.array_equal(s, truth) for s in runs]),
-                     "GA finds the optimum (%)":
-                         100 * np.mean([np.array_equal(s, best.solution) for s in runs])})
-    return pd.DataFrame(rows)
+def machine():
+    """'# key: value' lines naming the machine and the versions."""
+    processor = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo") as file:
+            processor = next(line.split(":", 1)[1].strip() for line in file
+                             if line.startswith("model name"))
+    except (OSError, StopIteration):
+        pass
+    usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return {"date": str(date.today()), "cpus": os.cpu_count(), "cpus usable": usable,
+            "processor": processor, "python": platform.python_version(), "numpy": np.__version__,
+            "scipy": scipy.__version__, "numba": numba.__version__, "pandas": pd.__version__,
+            "rsgeo": rsgeo.__version__}
 
 
 def save(table, name, seeds, seconds):
     RESULTS.mkdir(exist_ok=True)
-    header = (f"# command: python benchmarks/{Path(__file__).name} {' '.join(sys.argv[1:])}\n"
-              f"# seeds: {seeds[0]} to {seeds[-1]} ({len(seeds)} seeds)\n"
-              f"# run on {date.today()}, {platform.machine()} {platform.python_version()}, "
-              f"{seconds:.0f} s; times depend on the machine and its load\n")
+    header = {"command": f"python benchmarks/{Path(__file__).name} {' '.join(sys.argv[1:])}".strip(),
+              "seeds": f"{seeds[0]} to {seeds[-1]} ({len(seeds)} seeds)", **machine(),
+              "seconds": f"{seconds:.0f} (the whole table; times depend on the machine and its load)"}
+    text = "".join(f"# {key}: {value}\n" for key, value in header.items())
     path = RESULTS / name
-    path.write_text(header + table.to_csv(index=False, float_format="%.4f"))
+    path.write_text(text + table.to_csv(index=False, float_format="%.4f"))
     print(f"wrote {path.relative_to(RESULTS.parent.parent)}")
 
 
 if __name__ == "__main__":
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[5, 8, 12])
-    parser.add_argument("--seeds", type=int, default=30)
-    parser.add_argument("--no-real", action="store_true", help="skip the real scene (minutes)")
+    parser.add_argument("--seeds", type=int, default=100, help="seeds of the solvers' table")
+    parser.add_argument("--fitness-seeds", type=int, default=30,
+                        help="seeds of the fitness and real-scene tables")
+    parser.add_argument("--only", choices=["solvers", "fitness", "real"], nargs="+",
+                        default=["solvers", "fitness", "real"], help="tables to compute")
+    parser.add_argument("--no-real", action="store_true", help="skip the real scene")
     arguments = parser.parse_args()
-    seeds = list(range(arguments.seeds))
-    with pd.option_context("display.width", 160, "display.max_columns", 12):
-        for name, compute in (
-                ("matching_solvers.csv",
-                 lambda: matching.success_table(sizes=arguments.sizes, seeds=seeds).reset_index()),
-                ("matching_fitness.csv", lambda: matching.fitness_comparison(seeds=seeds)),
-                ("matching_real.csv", lambda: real_table(seeds))):
-            if name == "matching_real.csv" and arguments.no_real:
+    seeds, fitness_seeds = list(range(arguments.seeds)), list(range(arguments.fitness_seeds))
+    tables = {
+        "solvers": ("matching_solvers.csv", seeds,
+                    lambda: experiments.success_table(sizes=arguments.sizes, seeds=seeds).reset_index()),
+        "fitness": ("matching_fitness.csv", fitness_seeds,
+                    lambda: experiments.fitness_comparison(seeds=fitness_seeds)),
+        "real": ("matching_real.csv", fitness_seeds, lambda: experiments.real_table(fitness_seeds)),
+    }
+    with pd.option_context("display.width", 200, "display.max_columns", 12,
+                           "display.max_colwidth", 60):
+        for key in arguments.only:
+            if key == "real" and arguments.no_real:
                 continue
+            name, table_seeds, compute = tables[key]
             start = time.perf_counter()
             table = compute()
-            print(table.round(3))
-            save(table, name, seeds, time.perf_counter() - start)
+            print(table.round(3).to_string())
+            save(table, name, table_seeds, time.perf_counter() - start)

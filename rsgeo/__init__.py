@@ -11,6 +11,7 @@ One module per topic of the course:
 - :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4);
 - :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
 - :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm (chapter 6, the GA paper);
+- :mod:`rsgeo.experiments` - the experiment harness behind chapter 6's saved tables (success rates, certified optima);
 - :mod:`rsgeo.exercises` - checks for the exercises;
 - :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets on top of the maths.
 """

@@ -12,7 +12,13 @@ import numpy as np
 
 from . import data
 from .gcp import GCPSet
+from .matching import Mesh
 from .resample import interpolate
+
+__all__ = [
+    "ContrastPair", "contrast_pair", "DistortedPair", "distorted_pair", "Landscape",
+    "two_date_landscape", "synthetic_meshes",
+]
 
 
 # -- The regression paper's case ---------------------------------------------
@@ -253,8 +259,6 @@ def synthetic_meshes(n=8, centroid_noise=1.0, area_noise=0.10, seed=0, shrink=No
     truth : ndarray
         truth[k] = reference label (1-based) of adjustment segment k.
     """
-    from .matching import Mesh
-
     rng = np.random.default_rng(seed)
     centroids = rng.uniform(0, 400, (n, 2))
     areas = rng.uniform(50, 600, n)

@@ -373,7 +373,7 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
             runs[key] = matching.genetic_match(
                 reference, adjustment, seed=seed, population_size=population.value,
                 generations=generations, elite_fraction=elite.value, mutation_rate=mutation.value,
-                selection=selection.value)
+                selection=selection.value, tournament_size=3)   # as chapter 6b's runs
         draw_evolution_frame(reference, adjustment, truth, runs[key].history[:generation.value + 1],
                              figure, generations=generations)
 

@@ -134,7 +134,8 @@ def test_ga_evolution_moves_through_the_kept_run():
     changes_in_place(box, named["generation"], 12)
     assert list(right.lines) == curves
     run = matching.genetic_match(reference, adjustment, seed=0, population_size=60, generations=20,
-                                 elite_fraction=0.05, mutation_rate=0.04, selection="tournament")
+                                 elite_fraction=0.05, mutation_rate=0.04, selection="tournament",
+                                 tournament_size=3)
     solution = run.history[12]["best_solution"]
     assert left.get_title() == f"generation 12: {np.asarray(solution).tolist()}"
     np.testing.assert_allclose(curves[0].get_ydata(), [h["best"] for h in run.history[:13]])
@@ -143,7 +144,8 @@ def test_ga_evolution_moves_through_the_kept_run():
                                ("elitism", 0.2)):
         changes_in_place(box, named[description], value)
     rerun = matching.genetic_match(reference, adjustment, seed=0, population_size=30, generations=20,
-                                   elite_fraction=0.2, mutation_rate=0.1, selection="roulette")
+                                   elite_fraction=0.2, mutation_rate=0.1, selection="roulette",
+                                   tournament_size=3)
     np.testing.assert_allclose(curves[1].get_ydata(), [h["mean"] for h in rerun.history[:13]])
 
 
