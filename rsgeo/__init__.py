@@ -17,6 +17,7 @@ One module per topic of the course:
 """
 
 import importlib
+import os
 import pkgutil
 
 __version__ = "0.1.0"
@@ -38,3 +39,9 @@ def __getattr__(name):
 
 def __dir__():
     return sorted(set(globals()) | set(_MODULES))
+
+
+if os.environ.get("RSGEO_AUDIT_FIGURES"):
+    # set by the book's build (book/_ext/offline_book.py) for its kernels: an unreadable figure
+    # writes to standard error, which fails the build
+    importlib.import_module(f"{__name__}.plot").audit_rendered_figures(to_stderr=True)

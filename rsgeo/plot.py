@@ -12,7 +12,7 @@ from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 from .resample import bilinear_weights, keys_weights
 
 __all__ = [
-    "FIGURE_PROBLEMS", "show_image", "grid_path", "draw_grid", "draw_mesh",
+    "FIGURE_PROBLEMS", "FIGURE_PROBLEM_PREFIX", "show_image", "grid_path", "draw_grid", "draw_mesh",
     "draw_neighbour_weights", "draw_stretch_frame", "fix_layout", "animation_html",
     "figure_problems", "audit_rendered_figures", "label_points", "draw_residual_arrows",
 ]
@@ -424,13 +424,23 @@ def figure_problems(figure):
 FIGURE_PROBLEMS = []
 
 
-def audit_rendered_figures():
+def audit_rendered_figures(to_stderr=False):
     """Record :func:`figure_problems` of every figure as it is rendered (shown, saved, animated).
 
-    The tests call this at the top of every notebook they execute and fail on
-    anything in ``FIGURE_PROBLEMS``; it patches matplotlib's
-    ``FigureCanvasBase.print_figure`` for the running process only.
+    Each new problem is appended to ``FIGURE_PROBLEMS`` and, with ``to_stderr``, written to
+    standard error as a line starting with ``rsgeo figure problem:``. The book's build turns
+    this on in its kernels (environment variable ``RSGEO_AUDIT_FIGURES``, read by ``import
+    rsgeo``), where any standard-error output fails the build; the tests do the same when they
+    execute a notebook themselves. It patches matplotlib's ``FigureCanvasBase.print_figure``
+    for the running process only.
+
+    Parameters
+    ----------
+    to_stderr : bool
+        Also write each new problem to standard error.
     """
+    import sys
+
     from matplotlib.backend_bases import FigureCanvasBase
 
     if getattr(FigureCanvasBase.print_figure, "_rsgeo_audit", False):
@@ -441,10 +451,15 @@ def audit_rendered_figures():
         for problem in figure_problems(self.figure):
             if problem not in FIGURE_PROBLEMS:
                 FIGURE_PROBLEMS.append(problem)
+                if to_stderr:
+                    print(f"{FIGURE_PROBLEM_PREFIX}{problem}", file=sys.stderr)
         return original(self, *args, **kwargs)
 
     print_figure._rsgeo_audit = True
     FigureCanvasBase.print_figure = print_figure
+
+
+FIGURE_PROBLEM_PREFIX = "rsgeo figure problem: "
 
 
 # -- GCP figures (chapters 2 and 3) ------------------------------------------

@@ -1,8 +1,15 @@
 """Running a notebook the way the tests and CI do, with every rendered figure audited.
 
 Imported by the tests and by ``benchmarks/notebooks.py`` (never conftest.py, which pytest owns).
+
+CI executes each notebook once: the book's build (the README's first command) executes every
+notebook into its cache, ``_build/.jupyter_cache``, with the figure audit on in its kernels
+(book/_ext/offline_book.py). :func:`executed_notebook` reads that execution when it matches the
+notebook's current code and is newer than every file of rsgeo and its data; otherwise it
+executes the notebook itself, with the same audit.
 """
 
+import datetime
 import json
 import tempfile
 import time
@@ -13,6 +20,9 @@ from jupyter_client.manager import KernelManager
 from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parent.parent
+BOOK_CACHE = ROOT / "_build" / ".jupyter_cache"
+# what a cached execution depends on besides the notebook's own code
+DEPENDENCIES = ("rsgeo", "benchmarks/results")
 
 # Injected before a notebook's first cell and after its last: every figure the notebook renders
 # (shown, animated or drawn by a widget) is checked by rsgeo.plot.figure_problems.
@@ -45,3 +55,46 @@ def execute_notebook(path, timeout=600, audit_figures=False):
         notebook.metadata["figure_problems"] = json.loads(text.split("FIGURE_PROBLEMS=", 1)[1])
         del notebook.cells[0], notebook.cells[-1]
     return notebook
+
+
+def _newest_dependency():
+    files = [path for folder in DEPENDENCIES for path in (ROOT / folder).rglob("*")
+             if path.is_file() and "__pycache__" not in path.parts]
+    return max(path.stat().st_mtime for path in files)
+
+
+def cached_execution(path):
+    """The book build's execution of ``path`` if it is current, else None.
+
+    Current: the cache holds an execution of the notebook's present code, made after the last
+    change to rsgeo or the saved tables. Its figure problems are the standard-error lines the
+    audit wrote (``metadata["figure_problems"]``).
+    """
+    if not BOOK_CACHE.exists():
+        return None
+    from jupyter_cache import get_cache
+
+    from rsgeo.plot import FIGURE_PROBLEM_PREFIX
+
+    cache = get_cache(BOOK_CACHE)
+    try:
+        key, notebook = cache.merge_match_into_notebook(nbformat.read(path, as_version=4))
+    except KeyError:
+        return None
+    record = cache.get_cache_record(key)
+    created = record.created.replace(tzinfo=datetime.timezone.utc).timestamp()
+    if created < _newest_dependency():
+        return None
+    stderr = [output.get("text", "") for cell in notebook.cells for output in cell.get("outputs", [])
+              if output.get("name") == "stderr"]
+    notebook.metadata["figure_problems"] = [
+        line[len(FIGURE_PROBLEM_PREFIX):] for text in stderr for line in text.splitlines()
+        if line.startswith(FIGURE_PROBLEM_PREFIX)]
+    notebook.metadata["seconds"] = record.data.get("execution_seconds")
+    notebook.metadata["executed_by"] = "the book build"
+    return notebook
+
+
+def executed_notebook(path):
+    """The notebook with its outputs and figure problems: the build's execution, or a new one."""
+    return cached_execution(path) or execute_notebook(path, audit_figures=True)

@@ -39,7 +39,7 @@ def test_chapters_are_the_instructors_chapters(edition):
     for chapter in CHAPTERS:
         assert (edition / chapter).read_bytes() == (ROOT / chapter).read_bytes(), chapter
     config = (edition / "_config.yml").read_text()
-    assert re.search(r"execute_notebooks:\s*force", config)         # chapters run, figures and all
+    assert re.search(r"execute_notebooks:\s*(force|cache)", config)  # chapters run, figures and all
     assert re.search(r"exclude_patterns:\n\s+- \"exercises/\*\"", config)   # exercises: students run them
 
 

@@ -12,6 +12,7 @@ the build, the fonts (book/_vendor/widget-fonts) are copied there for every fold
 pages, so the repository keeps one copy of each font and no symbolic link.
 """
 
+import os
 import shutil
 from pathlib import Path
 
@@ -46,7 +47,19 @@ def place_widget_fonts(app, exception):
                 shutil.copyfile(font, target / font.name)
 
 
+def audit_figures_in_kernels():
+    """The kernels this build starts inherit this process's environment: with
+    ``RSGEO_AUDIT_FIGURES`` set, ``import rsgeo`` checks every rendered figure
+    (rsgeo.plot.figure_problems) and writes each problem to standard error, which fails the
+    build (``stderr_output: remove-warn`` with ``-W``). The build's single execution of each
+    notebook is so also its figure check, and the tests read the build's cache
+    (tests/notebook_runner.py) instead of executing the notebooks again.
+    """
+    os.environ.setdefault("RSGEO_AUDIT_FIGURES", "1")
+
+
 def setup(app):
+    audit_figures_in_kernels()
     app.connect("html-page-context", keep_scripts_once, priority=900)
     app.connect("build-finished", place_widget_fonts)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
