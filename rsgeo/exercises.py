@@ -704,6 +704,10 @@ def check_bilinear(value, window, dx, dy):
     ExerciseNotSolved
         If ``value`` is still ``...``.
 
+    References
+    ----------
+    GDAL, ``alg/gdalwarpkernel.cpp``: ``GWKBilinearResample4Sample``.
+
     Examples
     --------
     >>> check_bilinear(15.0, [[10, 20], [10, 20]], 0.5, 0.5)
@@ -864,6 +868,11 @@ def check_gain_offset(gain, offset, x, y):
     ExerciseNotSolved
         If ``gain`` or ``offset`` is still ``...``.
 
+    References
+    ----------
+    The regression paper: *Linear regression to match the contrast of
+    overlapping aerial photographs* (seed document 000 of this course).
+
     Examples
     --------
     >>> x = np.arange(10.0)
@@ -983,6 +992,11 @@ def check_filter_size(size, x_image, y_image, target_r=0.8, sizes=(1, 3, 5, 7, 9
     ExerciseNotSolved
         If ``size`` is still ``...``.
 
+    References
+    ----------
+    The regression paper: *Linear regression to match the contrast of
+    overlapping aerial photographs* (seed document 000 of this course).
+
     Examples
     --------
     >>> from rsgeo import synthetic
@@ -1098,6 +1112,11 @@ def check_fitness(value, solution, reference, adjustment, alpha=0.5):
     ExerciseNotSolved
         If ``value`` is still ``...``.
 
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), eqs. 1-7.
+
     Examples
     --------
     >>> from rsgeo.matching import Mesh
@@ -1129,6 +1148,11 @@ def check_decode(solution, chromosome):
     ------
     ExerciseNotSolved
         If ``decoded`` is still ``...``.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), section 3 (8 bits per gene).
 
     Examples
     --------

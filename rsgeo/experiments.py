@@ -227,11 +227,29 @@ def real_table(seeds=range(30), alpha=0.5):
     The optimum over all 9^8 solutions is found by exhaustive search; the
     paper's GA runs once per seed.
 
+    Parameters
+    ----------
+    seeds : iterable of int
+        One run of the GA per seed, for each fitness variant.
+    alpha : float
+        Weight a of size against layout in FA, in [0, 1].
+
     Returns
     -------
     pandas.DataFrame
         One row per fitness variant: the truth and the optimum with their FA,
         whether the optimum is the truth, and how often the GA finds each.
+
+    Raises
+    ------
+    ValueError
+        For alpha outside [0, 1] (from :func:`rsgeo.matching.fitness`). No
+        seeds give NaN percentages, not an error.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), whose fitness and GA these are.
     """
     seeds = list(seeds)
     reference, adjustment, truth = real_scene()

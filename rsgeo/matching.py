@@ -138,6 +138,11 @@ def fitness_batch(solutions, reference, adjustment, alpha=0.5, variant="paper"):
     ValueError
         As :func:`fitness`.
 
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), eqs. 1-7.
+
     Examples
     --------
     >>> ref = Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
@@ -334,6 +339,12 @@ def fitness(solution, reference, adjustment, alpha=0.5, variant="paper"):
         For alpha outside [0, 1], an unknown variant, a solution of the wrong
         length or with labels outside 0..m.
 
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), eqs. 1-7; the "compact"
+    variant is this course's.
+
     Examples
     --------
     >>> ref = Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
@@ -356,6 +367,32 @@ def fitness(solution, reference, adjustment, alpha=0.5, variant="paper"):
 def encode(solution, bits=BITS_PER_GENE):
     """A solution as a chromosome of bits, ``bits`` per gene, most significant first.
 
+    Parameters
+    ----------
+    solution : array_like of int
+        Labels, one per gene (the last axis); several solutions may be stacked
+        on the leading axes.
+    bits : int
+        Bits per gene; the GA paper codes each gene in 8.
+
+    Returns
+    -------
+    ndarray of uint8
+        0s and 1s, ``bits`` per label along the last axis.
+
+    Raises
+    ------
+    ValueError
+        If a label is negative or does not fit in ``bits`` bits.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), section 3 (binary coding).
+
+    Goldberg, D. E. (1989), *Genetic Algorithms in Search, Optimization, and
+    Machine Learning*, Addison-Wesley.
+
     Examples
     --------
     >>> encode([3, 1]).tolist()
@@ -370,6 +407,27 @@ def encode(solution, bits=BITS_PER_GENE):
 
 def decode(chromosome, bits=BITS_PER_GENE):
     """Integers encoded by a chromosome, ``bits`` per gene, most significant bit first.
+
+    The inverse of :func:`encode`.
+
+    Parameters
+    ----------
+    chromosome : array_like of 0 and 1
+        Bits along the last axis; several chromosomes may be stacked on the
+        leading axes.
+    bits : int
+        Bits per gene.
+
+    Returns
+    -------
+    ndarray of int
+        One integer per gene along the last axis.
+
+    Raises
+    ------
+    ValueError
+        If the length of the last axis is not a multiple of ``bits``, or the
+        chromosome holds anything but 0 and 1.
 
     Examples
     --------
@@ -494,6 +552,14 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     ValueError
         For an unknown selection, encoding, crossover or variant, a rate
         outside [0, 1], or a population, tournament or stall count below 1.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), section 3.
+
+    Goldberg, D. E. (1989), *Genetic Algorithms in Search, Optimization, and
+    Machine Learning*, Addison-Wesley.
 
     Examples
     --------
@@ -807,6 +873,47 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
     agreement. Each restart's permutation is scored with the paper's FA and
     the best kept. Needs as many adjustment as reference segments.
     ``variant`` is the fitness used to score the restarts (see :func:`fitness`).
+
+    Parameters
+    ----------
+    reference, adjustment : Mesh
+        Meshes with the same number of segments.
+    alpha : float
+        Weight of size against layout in FA, in [0, 1].
+    seed : int, optional
+        Seed of the random generator of the restarts' initial permutations.
+    restarts : int
+        Number of FAQ runs, each from a random doubly stochastic start.
+    variant : {"paper", "compact"}
+        The fitness that scores each restart's permutation.
+
+    Returns
+    -------
+    MatchResult
+        The best-scoring one-to-one solution; ``evaluations`` is ``restarts``,
+        ``optimal`` is False.
+
+    Raises
+    ------
+    ValueError
+        If the meshes have different numbers of segments; as :func:`fitness`
+        for alpha and variant.
+
+    References
+    ----------
+    Vogelstein, J. T., Conroy, J. M., Lyzinski, V., Podrazik, L. J., Kratzer,
+    S. G., Harley, E. T., Fishkind, D. E., Vogelstein, R. J. and Priebe, C. E.
+    (2015), "Fast approximate quadratic programming for graph matching",
+    PLOS ONE 10(4), e0121002.
+
+    SciPy, ``scipy.optimize.quadratic_assignment`` (``method="faq"``).
+
+    Examples
+    --------
+    >>> ref = Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
+    >>> adj = Mesh([[0, 100], [0, 0], [100, 0]], [120, 50, 80])
+    >>> qap_match(ref, adj, seed=0, restarts=5).solution.tolist()
+    [3, 1, 2]
     """
     from scipy.optimize import quadratic_assignment
 
@@ -829,12 +936,41 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
 def matched_centroids(solution, reference, adjustment):
     """GCP pairs from a solution: (adjustment group centroid, reference centroid) per matched label.
 
+    An adjustment group's centroid is the area-weighted mean of its members'
+    centroids.
+
+    Parameters
+    ----------
+    solution : (n,) array_like of int
+        solution[k] = reference label (1 to m) of adjustment segment k, 0 = no match.
+    reference, adjustment : Mesh
+        The meshes the solution matches.
+
     Returns
     -------
     adjustment_xy, reference_xy : ndarray, shape (k, 2)
         In each mesh's units (divide by the pixel size for pixels).
     labels : ndarray
         The reference labels that were matched.
+
+    Raises
+    ------
+    ValueError
+        For a solution of the wrong length or with labels outside 0..m.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), section 4 (centroids of
+    matched regions as GCPs).
+
+    Examples
+    --------
+    >>> ref = Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
+    >>> adj = Mesh([[0, 0], [100, 0], [0, 90], [0, 110]], [50, 80, 60, 60])
+    >>> adjustment_xy, reference_xy, labels = matched_centroids([1, 2, 3, 3], ref, adj)
+    >>> adjustment_xy[2].tolist(), labels.tolist()
+    ([0.0, 100.0], [1, 2, 3])
     """
     solution = _as_solutions(solution, len(adjustment), len(reference))[0]
     labels = np.unique(solution[solution > 0])
@@ -936,10 +1072,25 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
     tolerance : float
         Refinement tolerance, adjustment pixels.
     min_gcps : int
+        Fewest GCPs refinement keeps (capped at the number matched).
 
     Returns
     -------
     Registration
+
+    Raises
+    ------
+    ValueError
+        If a mesh cannot be built from the segments (see :class:`Mesh`), fewer
+        than 3 segments are matched, or as :func:`genetic_match` and
+        :func:`rsgeo.gcp.refine_gcps` for the other arguments.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), section 4.
+
+    GDAL, ``gdalwarp -refine_gcps`` (``alg/gdal_crs.cpp``).
     """
     reference_mesh = Mesh(reference.centroids, reference.areas, pixel_size=reference_pixel)
     adjustment_mesh = Mesh(adjustment.centroids, adjustment.areas, pixel_size=adjustment_pixel)

@@ -35,8 +35,41 @@ def show_image(ax, image, transform=None, title="", cmap="gray", label="DN", vmi
         2-D, or 3-D bands first (shown as RGB, stretched 2-98 %).
     transform : affine.Affine, optional
         Geotransform: axes in map coordinates (``units`` "km" or "m"); else pixels.
+    title : str
+        The panel's title.
+    cmap : str or matplotlib colormap
+        Colour map of a 2-D image.
     label : str
-        Colour-bar label.
+        Colour-bar label, with its units (e.g. "DN", "height (m)").
+    vmin, vmax : float, optional
+        Values at the ends of the colour map (default: the image's range).
+    colorbar : bool
+        Add a colour bar (never for a 3-D image, drawn as RGB).
+    units : {"km", "m"}
+        Units of map axes when ``transform`` is given ("km" divides by 1000;
+        anything else keeps the transform's units).
+
+    Returns
+    -------
+    matplotlib.image.AxesImage
+        The image artist (update it with ``set_data``).
+
+    Raises
+    ------
+    ValueError
+        If ``image`` is 1-D (no rows and columns); nothing else is checked
+        here: matplotlib raises TypeError for an image it cannot draw
+        (e.g. 4-D).
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().subplots()
+    >>> artist = show_image(ax, np.zeros((4, 6)), title="zeros")
+    >>> ax.get_xlabel(), artist.get_extent()
+    ('column (pixels)', [0, 6, 4, 0])
     """
     image = np.asarray(image)
     if image.ndim == 3:
@@ -114,6 +147,12 @@ def draw_grid(ax, lines, **style):
     matplotlib.lines.Line2D
         The whole grid as one line (see :func:`grid_path`): move it with
         ``line.set_data(*grid_path(new_lines))``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`grid_path`: no lines, or a line whose cols and rows differ
+        in length.
     """
     style = {"color": "tab:blue", "linewidth": 0.8, **style}
     (line,) = ax.plot(*grid_path(lines), **style)
@@ -138,6 +177,17 @@ def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
     -------
     matplotlib.collections.PathCollection
         The centroids' markers.
+
+    Raises
+    ------
+    ValueError
+        From matplotlib, if ``centroids`` is not an (n, 2) array (nothing is
+        checked here); fewer ``labels`` than centroids raise IndexError.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), fig. 4.
     """
     from matplotlib.collections import LineCollection
 
@@ -158,6 +208,41 @@ def draw_neighbour_weights(ax, position, method):
 
     Circle area is proportional to ``|weight|``, red for negative weights (cubic
     convolution's lobes); the cross is the position, in GDAL's (col, row).
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    position : (float, float)
+        The position (col, row) in GDAL's continuous pixel coordinates.
+    method : {"bilinear", "cubic"}
+        The interpolator; any value but "bilinear" draws the cubic weights
+        (:func:`rsgeo.resample.keys_weights`).
+
+    Returns
+    -------
+    None
+        The panel is drawn in place: its limits, labels and title set.
+
+    Raises
+    ------
+    ValueError
+        If ``position`` is not two numbers (nothing else is checked).
+
+    References
+    ----------
+    GDAL, ``alg/gdalwarpkernel.cpp``; Keys, R. G. (1981), "Cubic convolution
+    interpolation for digital image processing", IEEE Transactions on
+    Acoustics, Speech, and Signal Processing 29(6), 1153-1160.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from matplotlib.figure import Figure
+    >>> ax = Figure().subplots()
+    >>> draw_neighbour_weights(ax, (2.3, 1.8), "bilinear")
+    >>> ax.get_title()
+    'bilinear: position (2.30, 1.80)'
     """
 
     col, row = position
@@ -297,6 +382,11 @@ def fix_layout(figure):
     matplotlib.figure.Figure
         The same figure, its subplot parameters adjusted.
 
+    Raises
+    ------
+    AttributeError
+        If ``figure`` is not a matplotlib Figure (nothing is checked here).
+
     Examples
     --------
     >>> import matplotlib
@@ -319,6 +409,25 @@ def animation_html(animation):
     Matplotlib's player links Font Awesome 4 from a CDN for its button icons; the link is
     dropped so that the page makes no request outside the book (the book's theme and
     Jupyter already provide Font Awesome, whose ``fa fa-play`` classes the buttons use).
+
+    The animation's figure is closed, so that the notebook does not show it a
+    second time as a still image.
+
+    Parameters
+    ----------
+    animation : matplotlib.animation.Animation
+        The animation, e.g. a ``FuncAnimation``.
+
+    Returns
+    -------
+    IPython.display.HTML
+        The player: every frame as an embedded image, with its controls.
+
+    Raises
+    ------
+    AttributeError
+        If ``animation`` is not a matplotlib Animation (nothing is checked
+        here); errors while drawing a frame propagate.
     """
     import re
 
@@ -373,6 +482,11 @@ def figure_problems(figure):
     -------
     list of str
         One sentence per problem, naming the panel.
+
+    Raises
+    ------
+    AttributeError
+        If ``figure`` is not a matplotlib Figure (nothing is checked here).
 
     Examples
     --------
@@ -438,6 +552,17 @@ def audit_rendered_figures(to_stderr=False):
     ----------
     to_stderr : bool
         Also write each new problem to standard error.
+
+    Returns
+    -------
+    None
+        Only the first call patches matplotlib; later calls do nothing (the
+        first call's ``to_stderr`` stays in force).
+
+    Raises
+    ------
+    ImportError
+        If matplotlib is not installed.
     """
     import sys
 
@@ -524,6 +649,12 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
     Returns
     -------
     matplotlib.quiver.Quiver
+
+    Raises
+    ------
+    ValueError
+        If ``dx`` or ``dy`` does not hold one value per GCP, or
+        ``exaggeration`` is not a positive number.
     """
     image_xy = np.asarray(image_xy, dtype=float).reshape(-1, 2)
     dx, dy = np.asarray(dx, dtype=float), np.asarray(dy, dtype=float)

@@ -93,6 +93,21 @@ def keys_weights(t, a=-0.5):
     weights : ndarray, shape (4,) + shape of t
         Weights that sum to 1 for every t.
 
+    Raises
+    ------
+    ValueError
+        If ``t`` cannot be read as floating-point numbers (NumPy's error).
+        Nothing else is checked: an offset outside [0, 1) gives the kernel's
+        values there.
+
+    References
+    ----------
+    Keys, R. G. (1981), "Cubic convolution interpolation for digital image
+    processing", IEEE Transactions on Acoustics, Speech, and Signal Processing
+    29(6), 1153-1160.
+
+    GDAL, ``alg/gdalwarpkernel.cpp``: ``GWKCubicComputeWeights``.
+
     Examples
     --------
     >>> keys_weights(0.0) + 0.0          # + 0.0 turns -0. into 0.
@@ -150,6 +165,17 @@ def cubic_kernel(s, a=-0.5):
     ndarray
         W(s): 1 at s = 0, 0 at every other integer, 0 for ``|s| >= 2``.
 
+    Raises
+    ------
+    ValueError
+        If ``s`` cannot be read as floating-point numbers (NumPy's error).
+
+    References
+    ----------
+    Keys, R. G. (1981), "Cubic convolution interpolation for digital image
+    processing", IEEE Transactions on Acoustics, Speech, and Signal Processing
+    29(6), 1153-1160.
+
     Examples
     --------
     >>> float(cubic_kernel(0.0)), float(cubic_kernel(1.0)), float(cubic_kernel(1.5))
@@ -163,6 +189,25 @@ def cubic_kernel(s, a=-0.5):
 
 def bilinear_weights(t):
     """Bilinear weights of the two pixels around a fractional offset t in [0, 1).
+
+    Parameters
+    ----------
+    t : float or array_like
+        Fractional distance in [0, 1) from the pixel on the left (or above).
+
+    Returns
+    -------
+    weights : ndarray, shape (2,) + shape of t
+        ``1 - t`` for the pixel on the left, ``t`` for the one on the right.
+
+    Raises
+    ------
+    ValueError
+        If ``t`` cannot be read as floating-point numbers (NumPy's error).
+
+    References
+    ----------
+    GDAL, ``alg/gdalwarpkernel.cpp``: ``GWKBilinearResample4Sample``.
 
     Examples
     --------
@@ -204,6 +249,15 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1):
         the method is unknown, cols and rows differ in shape or hold NaN or
         infinity, nodata does not fit the dtype, or num_threads is not a whole
         number from 1 to the number of threads Numba may use.
+
+    References
+    ----------
+    GDAL, ``alg/gdalwarpkernel.cpp``: its nearest-neighbour kernels,
+    ``GWKBilinearResample4Sample`` and ``GWKCubicResampleNoMasks4SampleT``.
+
+    Keys, R. G. (1981), "Cubic convolution interpolation for digital image
+    processing", IEEE Transactions on Acoustics, Speech, and Signal Processing
+    29(6), 1153-1160.
 
     Examples
     --------
@@ -251,6 +305,22 @@ _COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
 
 def check_num_threads(num_threads):
     """Return ``num_threads`` as an int from 1 to Numba's thread count, else raise ValueError.
+
+    Parameters
+    ----------
+    num_threads : int
+        Threads to share a kernel's rows; a whole-valued float is accepted.
+
+    Returns
+    -------
+    int
+        ``num_threads`` as an int.
+
+    Raises
+    ------
+    ValueError
+        If ``num_threads`` is not a whole number from 1 to
+        ``numba.config.NUMBA_NUM_THREADS``.
 
     Examples
     --------
@@ -310,7 +380,36 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
 
 
 def check_nodata(nodata, dtype):
-    """Return ``nodata`` if it is representable in ``dtype``, else raise ValueError."""
+    """Return ``nodata`` if it is representable in ``dtype``, else raise ValueError.
+
+    Parameters
+    ----------
+    nodata : int or float
+        The value for positions outside the image.
+    dtype : numpy dtype or str
+        The image's dtype.
+
+    Returns
+    -------
+    int or float
+        ``nodata`` as an int for an integer dtype, unchanged otherwise.
+
+    Raises
+    ------
+    ValueError
+        If ``dtype`` is an integer type and ``nodata`` is not a finite whole
+        number inside its range, or ``dtype`` is float32 and ``nodata`` is
+        finite but beyond float32's largest value.
+
+    Examples
+    --------
+    >>> check_nodata(255.0, np.uint8)
+    255
+    >>> check_nodata(-1, np.uint8)
+    Traceback (most recent call last):
+    ...
+    ValueError: nodata=-1 does not fit dtype uint8 (needs an integer in [0, 255])
+    """
     dtype = np.dtype(dtype)
     if dtype.kind in "ui":
         info = np.iinfo(dtype)
@@ -682,6 +781,23 @@ def grid_positions(shape, transform=None, first_row=0):
     -------
     x, y : ndarray, shape ``shape``
         Map coordinates of each cell centre.
+
+    Raises
+    ------
+    IndexError, TypeError
+        Nothing is checked here (callers such as :func:`warp` check ``shape``
+        with :func:`check_shape` first); a ``shape`` without two numbers fails
+        in NumPy.
+
+    References
+    ----------
+    GDAL, ``alg/gdalwarpkernel.cpp``: output pixel centres at (j + 0.5, i + 0.5).
+
+    Examples
+    --------
+    >>> x, y = grid_positions((2, 3))
+    >>> x[0], y[:, 0]
+    (array([0.5, 1.5, 2.5]), array([0.5, 1.5]))
     """
     a, b, c, d, e, f = (transform if transform is not None else affine.Affine.identity())[:6]
     cols = np.arange(shape[1]) + 0.5
@@ -737,6 +853,11 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         output cell lands inside the source image (the mapping goes the wrong
         way, image -> map, or the output grid is somewhere else): a warp
         that would return nothing but nodata.
+
+    References
+    ----------
+    GDAL, ``alg/gdalwarpkernel.cpp`` and ``apps/gdalwarp_lib.cpp``: the warp
+    kernels and ``-dstnodata``; see :func:`interpolate`.
 
     Examples
     --------

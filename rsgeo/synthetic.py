@@ -47,6 +47,43 @@ def contrast_pair(gain=0.885, offset=27.107, size=100, noise=45.0, shift=(0.7, 0
     ``shift`` pixels away, plus noise (of the same relative size). With the
     defaults the raw correlation is 0.43 (the paper's 0.45) and a 3 × 3 mean
     filter raises it to 0.87 (the paper's 0.80).
+
+    Parameters
+    ----------
+    gain, offset : float
+        The true relation y = gain · x + offset (DN); the defaults are the
+        paper's fitted values.
+    size : int
+        Side of the two square images (pixels).
+    noise : float
+        Standard deviation of the noise added to X (DN); Y's is ``noise · gain``.
+    shift : (float, float)
+        Misregistration of Y against X, (cols, rows) in pixels.
+    seed : int
+        Seed of the noise; the same seed gives the same pair.
+
+    Returns
+    -------
+    ContrastPair
+        The two uint8 images and the parameters that made them.
+
+    Raises
+    ------
+    ValueError
+        For a negative ``noise`` (NumPy's "scale < 0"). Nothing else is
+        checked: ``shift`` needs two numbers, and ``rsgeo.data.load`` raises
+        if the scene ``cbers_b2_A`` is missing.
+
+    References
+    ----------
+    The regression paper: *Linear regression to match the contrast of
+    overlapping aerial photographs* (seed document 000 of this course).
+
+    Examples
+    --------
+    >>> pair = contrast_pair(seed=0)
+    >>> pair.x_image.shape, pair.y_image.dtype.name
+    ((100, 100), 'uint8')
     """
     rng = np.random.default_rng(seed)
     scene = data.load("cbers_b2_A").array.astype(np.float64)
@@ -105,6 +142,37 @@ def distorted_pair(n_gcps=16, gcp_error=0.4, blunder_size=9.0, shape=(360, 360),
     image on a jittered grid; their image coordinates carry Gaussian errors of
     ``gcp_error`` pixels ("a mão treme") and one of them a blunder of
     ``blunder_size`` pixels.
+
+    Parameters
+    ----------
+    n_gcps : int
+        Number of GCPs (at least 1).
+    gcp_error : float
+        Standard deviation of each GCP's image-coordinate error (pixels).
+    blunder_size : float
+        Length of the blunder added to one GCP (pixels).
+    shape : (int, int)
+        Size (rows, cols) of the distorted image.
+    seed : int
+        Seed of the GCP layout, errors and blunder.
+
+    Returns
+    -------
+    DistortedPair
+        The reference, the distorted image, the true mapping and the GCPs.
+
+    Raises
+    ------
+    ValueError
+        For ``n_gcps`` below 1 or a negative ``gcp_error`` (NumPy's errors).
+        Nothing else is checked: ``shape`` needs two numbers, and
+        ``rsgeo.data.load`` raises if the scene ``nat1`` is missing.
+
+    Examples
+    --------
+    >>> pair = distorted_pair(seed=0)
+    >>> pair.image.shape, len(pair.gcps.ids), pair.gcps.ids[pair.blunder] in pair.gcps.ids
+    ((360, 360), 16, True)
     """
     rng = np.random.default_rng(seed)
     reference = data.load("nat1")
@@ -176,6 +244,38 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
     with a high, stable signal. The adjustment image sees the same ground at
     another pixel size, rotated by ``rotation_deg`` and shifted by ``shift``
     metres: the misregistration the paper's method must find.
+
+    Parameters
+    ----------
+    n_forest : int
+        Number of forest remnants.
+    reference_pixel, adjustment_pixel : float
+        Pixel sizes of the reference and adjustment images (metres).
+    rotation_deg : float
+        Rotation of the adjustment grid against the reference (degrees).
+    shift : (float, float)
+        Shift of the adjustment grid's centre, (x, y) in metres.
+    size_m : float
+        Side of the square landscape (metres).
+    seed : int
+        Seed of the fields, remnants and both dates' signals.
+
+    Returns
+    -------
+    Landscape
+        Both images, their geotransforms and the true forest remnants.
+
+    Raises
+    ------
+    ZeroDivisionError
+        Nothing is checked: pixel sizes must be positive (a zero divides by
+        zero), and the remnants, kept 1400 m apart and 1100 m from the edge,
+        must fit in ``size_m`` (with too many, placing them never ends).
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme).
     """
     from scipy import ndimage
     from scipy.spatial import cKDTree
@@ -253,11 +353,44 @@ def synthetic_meshes(n=8, centroid_noise=1.0, area_noise=0.10, seed=0, shrink=No
     centroid moving towards one side, as the paper's Landsat 2002 segment that
     kept 31 % of its reference area.
 
+    Parameters
+    ----------
+    n : int
+        Number of segments (at least 3).
+    centroid_noise : float
+        Standard deviation of the centroid noise (pixels).
+    area_noise : float
+        Largest relative change of an area (0.10 is ±10 %).
+    seed : int
+        Seed of the meshes, the order and the noise.
+    shrink : (int, float), optional
+        (k, share): reference segment k (0-based, below n) keeps ``share``
+        (above 0) of its area in the adjustment.
+
     Returns
     -------
     reference, adjustment : rsgeo.matching.Mesh
     truth : ndarray
         truth[k] = reference label (1-based) of adjustment segment k.
+
+    Raises
+    ------
+    ValueError
+        From :class:`rsgeo.matching.Mesh`: fewer than 3 segments, or an area
+        that is not positive (``area_noise`` above 1, a ``share`` of 0);
+        from NumPy for a negative ``centroid_noise``. A ``shrink`` index
+        outside 0..n-1 raises IndexError.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme).
+
+    Examples
+    --------
+    >>> reference, adjustment, truth = synthetic_meshes(5, seed=0)
+    >>> len(reference), sorted(truth.tolist())
+    (5, [1, 2, 3, 4, 5])
     """
     rng = np.random.default_rng(seed)
     centroids = rng.uniform(0, 400, (n, 2))

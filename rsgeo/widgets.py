@@ -284,6 +284,11 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
     ------
     ValueError
         If ``size`` is not one of ``sizes`` or a method is unknown.
+
+    References
+    ----------
+    The regression paper: *Linear regression to match the contrast of
+    overlapping aerial photographs* (seed document 000 of this course).
     """
     import ipywidgets as widgets
 
@@ -342,6 +347,14 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
     ------
     ValueError
         If ``generations`` is under 2 or ``truth`` has not one label per adjustment segment.
+
+    References
+    ----------
+    The GA paper: *Homologous regions by genetic algorithms for the registration
+    of multi-sensor images* (GEOSAFRAS programme), section 3.
+
+    Goldberg, D. E. (1989), *Genetic Algorithms in Search, Optimization, and
+    Machine Learning*, Addison-Wesley.
     """
     import ipywidgets as widgets
 
