@@ -11,15 +11,17 @@ executes the notebook itself, with the same audit.
 
 import datetime
 import json
-import tempfile
 import time
 from pathlib import Path
 
+import sys
+
 import nbformat
-from jupyter_client.manager import KernelManager
 from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "book" / "_ext"))
+from offline_book import IPCKernelManager  # noqa: E402  (the book build's kernels, the same way)
 BOOK_CACHE = ROOT / "_build" / ".jupyter_cache"
 # what a cached execution depends on besides the notebook's own code
 DEPENDENCIES = ("rsgeo", "benchmarks/results")
@@ -43,13 +45,11 @@ def execute_notebook(path, timeout=600, audit_figures=False):
     if audit_figures:
         notebook.cells.insert(0, nbformat.v4.new_code_cell(AUDIT_START))
         notebook.cells.append(nbformat.v4.new_code_cell(AUDIT_END))
-    with tempfile.TemporaryDirectory(prefix="rsgeo-kernel-") as sockets:
-        manager = KernelManager(kernel_name="python3", transport="ipc", ip=str(Path(sockets) / "kernel"))
-        client = NotebookClient(notebook, km=manager, timeout=timeout, kernel_name="python3",
-                                resources={"metadata": {"path": str(Path(path).parent)}})
-        start = time.perf_counter()
-        client.execute()
-        notebook.metadata["seconds"] = time.perf_counter() - start
+    client = NotebookClient(notebook, km=IPCKernelManager(kernel_name="python3"), timeout=timeout,
+                            kernel_name="python3", resources={"metadata": {"path": str(Path(path).parent)}})
+    start = time.perf_counter()
+    client.execute()
+    notebook.metadata["seconds"] = time.perf_counter() - start
     if audit_figures:
         text = "".join(output.get("text", "") for output in notebook.cells[-1].outputs)
         notebook.metadata["figure_problems"] = json.loads(text.split("FIGURE_PROBLEMS=", 1)[1])

@@ -137,3 +137,4 @@ def test_a_failing_cell_or_an_unreadable_figure_fails_the_book_build(tmp_path):
     assert build.returncode != 0, output[-2000:]
     assert "broken on purpose" in output
     assert "unlabelled" in output and "stderr" in output.lower(), output[-3000:]
+    assert "running over TCP" not in output          # the build's kernels talk over IPC sockets

@@ -14,7 +14,11 @@ pages, so the repository keeps one copy of each font and no symbolic link.
 
 import os
 import shutil
+import tempfile
 from pathlib import Path
+
+from jupyter_client.manager import AsyncKernelManager
+from nbclient import NotebookClient
 
 FONTS = Path("book") / "_vendor" / "widget-fonts"
 FONT_FOLDERS = ("@jupyter-widgets", "@jupyter-widgets/html-manager/dist")
@@ -58,7 +62,36 @@ def audit_figures_in_kernels():
     os.environ.setdefault("RSGEO_AUDIT_FIGURES", "1")
 
 
+class IPCKernelManager(AsyncKernelManager):
+    """A kernel that talks over Unix sockets in a private folder, not TCP ports.
+
+    Kernels started at once by other processes on the machine (two test workers, another build)
+    cannot take each other's ports, and the sockets' absolute path works whatever folder the
+    kernel runs in. The folder is removed when the kernel is shut down.
+    """
+
+    def __init__(self, **kwargs):
+        self._socket_folder = tempfile.mkdtemp(prefix="rsgeo-kernel-")
+        kwargs.setdefault("transport", "ipc")
+        kwargs.setdefault("ip", os.path.join(self._socket_folder, "kernel"))
+        super().__init__(**kwargs)
+
+    async def _async_cleanup_resources(self, restart=False):
+        await super()._async_cleanup_resources(restart=restart)
+        if not restart:
+            shutil.rmtree(self._socket_folder, ignore_errors=True)
+
+    cleanup_resources = _async_cleanup_resources
+
+
+def kernels_over_ipc():
+    """Every notebook this process executes (myst-nb and jupyter-cache use nbclient) gets an
+    :class:`IPCKernelManager` unless told otherwise."""
+    NotebookClient._kernel_manager_class_default = lambda client: IPCKernelManager
+
+
 def setup(app):
+    kernels_over_ipc()
     audit_figures_in_kernels()
     app.connect("html-page-context", keep_scripts_once, priority=900)
     app.connect("build-finished", place_widget_fonts)
