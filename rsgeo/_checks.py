@@ -8,7 +8,7 @@ error at the line they wrote, not a traceback from deep inside NumPy.
 import numpy as np
 
 __all__ = [
-    "as_points", "as_image", "check_range", "check_choice",
+    "as_points", "as_image", "as_shape", "check_range", "check_choice",
 ]
 
 
@@ -73,3 +73,48 @@ def check_choice(value, name, choices):
     if value not in choices:
         raise ValueError(f"unknown {name} {value!r}; choose one of {', '.join(map(repr, choices))}")
     return value
+
+
+def as_shape(shape, name="shape"):
+    """Return ``shape`` as a (rows, cols) tuple of positive ints, else raise ValueError.
+
+    Parameters
+    ----------
+    shape : sequence of two numbers
+        A grid size, (rows, cols); whole-valued floats are accepted.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    (int, int)
+
+    Raises
+    ------
+    ValueError
+        If ``shape`` is a single number, has other than two entries, or holds
+        anything but positive whole numbers.
+
+    Examples
+    --------
+    >>> as_shape((351.0, 369))
+    (351, 369)
+    >>> as_shape(351)
+    Traceback (most recent call last):
+    ...
+    ValueError: shape must be (rows, cols), two positive integers, got 351
+    """
+    message = f"{name} must be (rows, cols), two positive integers, got {shape!r}"
+    try:
+        values = tuple(shape)
+    except TypeError:
+        raise ValueError(message) from None
+    if len(values) != 2:
+        raise ValueError(message)
+    try:
+        ok = all(float(n).is_integer() and n >= 1 for n in values)
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise ValueError(message)
+    return int(values[0]), int(values[1])

@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._checks import as_points, check_range
+from ._checks import as_points, as_shape, check_range
 from .gcp import GeometricModel, InverseModel
 from .resample import grid_positions, interpolate
 
@@ -898,7 +898,7 @@ class SystematicDistortion(GeometricModel):
     def __post_init__(self):
         check_range(self.scale, "scale", low=1e-6, why="a ratio of altitudes")
         if self.shape is not None:
-            self.shape = _check_grid_shape(self.shape)
+            self.shape = as_shape(self.shape)
         if (self.view_altitude_km is None) != (self.nadir_pixel_km is None):
             raise ValueError("view_altitude_km and nadir_pixel_km go together: give both or neither")
         if self.view_altitude_km is None and (self.roll_deg or self.pitch_deg):
@@ -984,7 +984,7 @@ class SystematicDistortion(GeometricModel):
         ValueError
             If the shape is not two positive whole numbers.
         """
-        return replace(self, shape=_check_grid_shape(shape))
+        return replace(self, shape=as_shape(shape))
 
     def _grid(self):
         if self.shape is None:
@@ -1141,17 +1141,6 @@ def _yaw_roots(c_rot, r_rot, yaw, rate):
         found[part] = np.count_nonzero(np.diff(np.sign(g), axis=1) != 0, axis=1)
     counts[folded] = found
     return counts
-
-
-def _check_grid_shape(shape):
-    """(rows, cols) as two positive ints."""
-    try:
-        rows, cols = (int(n) for n in shape)
-    except (TypeError, ValueError):
-        raise ValueError(f"shape must be (rows, cols), got {shape!r}") from None
-    if rows < 1 or cols < 1 or (rows, cols) != tuple(shape):
-        raise ValueError(f"shape must be two positive whole numbers (rows, cols), got {shape!r}")
-    return rows, cols
 
 
 def _on_image_grid(distortion, shape):

@@ -231,7 +231,7 @@ def test_the_protocol_needs_the_grid_and_a_matching_image():
         model([[1.0, 2.0]])
     with pytest.raises(ValueError, match="set on a"):
         distortion.correct(np.zeros((10, 12)), model.on_grid((12, 10)))
-    with pytest.raises(ValueError, match="two positive whole numbers"):
+    with pytest.raises(ValueError, match="two positive integers"):
         model.on_grid((0, 5))
 
 
