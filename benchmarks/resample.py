@@ -17,6 +17,14 @@ The table is printed and saved as CSV (default
 machine's CPU count, the library versions and the compile times as
 ``# key: value`` lines above the header (read it with
 ``pandas.read_csv(file, comment="#")``).
+
+Downsampling rows (``--downsample 8``, the default; ``--downsample`` with no
+factor leaves them out): the same image taken to a grid ``factor`` times
+coarser (output pixel -> source pixel is a scale by ``factor``), where GDAL
+widens bilinear and cubic over 1/scale source pixels and averages with
+"average"; rsgeo and GDAL only (the others do not widen), their method
+labelled e.g. "bilinear, 1/8". Their speed is in megapixels of *source* per
+second, the work such a warp does.
 """
 
 import argparse
@@ -45,15 +53,15 @@ def mapping(size):
             * affine.Affine.scale(1 / 1.02) * affine.Affine.translation(-centre, -centre))
 
 
-def run_rsgeo(image, to_source, method, threads=1):
-    return warp(image, to_source, image.shape, method=method, num_threads=threads)
+def run_rsgeo(image, to_source, method, threads=1, shape=None):
+    return warp(image, to_source, shape or image.shape, method=method, num_threads=threads)
 
 
-def run_gdal(image, to_source, method, threads=1):
+def run_gdal(image, to_source, method, threads=1, shape=None):
     from rasterio.enums import Resampling
     from rasterio.warp import reproject
 
-    out = np.zeros_like(image)
+    out = np.zeros(shape or image.shape, dtype=image.dtype)
     # source pixel -> "map" is the identity; output pixel -> map is to_source.
     reproject(image, out, src_transform=affine.Affine.identity(), dst_transform=to_source,
               src_crs="EPSG:3857", dst_crs="EPSG:3857", resampling=Resampling[method],
@@ -105,7 +113,12 @@ def test_image(size, dtype):
     return np.random.default_rng(0).integers(info.min, int(info.max) + 1, (size, size), dtype=dtype)
 
 
-def benchmark(sizes=(2048, 4096), dtypes=("uint8", "int16"), repeat=3, peers=None):
+DOWNSAMPLED_METHODS = ("bilinear", "cubic", "average")
+DOWNSAMPLING_PEERS = ("rsgeo", "GDAL", "rsgeo, 2 threads", "GDAL, 2 threads")
+
+
+def benchmark(sizes=(2048, 4096), dtypes=("uint8", "int16"), repeat=3, peers=None,
+              downsample=(8,)):
     """Rows of (size, dtype, method, peer, threads, megapixels per second, ratio to GDAL).
 
     Within one (size, dtype, method) the peers run one after another, each
@@ -132,6 +145,30 @@ def benchmark(sizes=(2048, 4096), dtypes=("uint8", "int16"), repeat=3, peers=Non
                     reference = speeds.get(REFERENCE[threads])
                     ratio = speed / reference[1] if reference else np.nan
                     rows.append((size, dtype, method, label, threads, speed, ratio))
+            rows += _downsampling_rows(image, peers, repeat, downsample)
+    return rows
+
+
+def _downsampling_rows(image, peers, repeat, factors):
+    """Rows for the image taken to grids ``factors`` times coarser (source Mpx/s)."""
+    rows = []
+    size, dtype = image.shape[0], image.dtype.name
+    for factor in factors:
+        coarse = affine.Affine.scale(float(factor))   # output pixel -> source pixel
+        shape = (size // factor, size // factor)
+        for method in DOWNSAMPLED_METHODS:
+            speeds = {}
+            for label, function, threads in peers:
+                if label not in DOWNSAMPLING_PEERS:
+                    continue
+                function(image, coarse, method, threads, shape)                # warm up
+                seconds = best_time(lambda: function(image, coarse, method, threads, shape),
+                                    repeat)
+                speeds[label] = (threads, size * size / seconds / 1e6)
+            for label, (threads, speed) in speeds.items():
+                reference = speeds.get(REFERENCE[threads])
+                ratio = speed / reference[1] if reference else np.nan
+                rows.append((size, dtype, f"{method}, 1/{factor}", label, threads, speed, ratio))
     return rows
 
 
@@ -233,6 +270,8 @@ if __name__ == "__main__":
     parser.add_argument("--sizes", type=int, nargs="+", default=[2048, 4096])
     parser.add_argument("--dtypes", nargs="+", default=["uint8", "int16"])
     parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--downsample", type=int, nargs="*", default=[8],
+                        help="factors of the downsampling rows (none: leave them out)")
     parser.add_argument("--output", default=Path(__file__).parent / "results" / "resample.csv",
                         help="CSV file to write (default: benchmarks/results/resample.csv)")
     arguments = parser.parse_args()
@@ -240,8 +279,10 @@ if __name__ == "__main__":
     jit = {"Numba JIT, first call of the 3 methods on uint8 (s)":
            f"{compile_s:.1f} compiling (empty cache), {cached_s:.1f} from the cache"}
     print("; ".join(f"{key}: {value}" for key, value in jit.items()))
-    table = benchmark(arguments.sizes, arguments.dtypes, arguments.repeat)
+    table = benchmark(arguments.sizes, arguments.dtypes, arguments.repeat,
+                      downsample=arguments.downsample)
     print_table(table)
     command = ("python benchmarks/resample.py --sizes " + " ".join(map(str, arguments.sizes))
-               + " --dtypes " + " ".join(arguments.dtypes) + f" --repeat {arguments.repeat}")
+               + " --dtypes " + " ".join(arguments.dtypes) + f" --repeat {arguments.repeat}"
+               + " --downsample " + " ".join(map(str, arguments.downsample)))
     print("saved", save_csv(table, arguments.output, command, jit))

@@ -77,6 +77,7 @@ def book_widgets():
         "gcp_explorer (ch. 2)": lambda: widgets.gcp_explorer(gcps, order=1, index=3),
         "regression_stretch (5b)": lambda: widgets.regression_stretch(pair.x_image, pair.y_image),
         "ga_evolution (6b)": lambda: widgets.ga_evolution(reference, adjustment, truth),
+        "model_explorer (3b)": lambda: widgets.model_explorer(gcps, model="polynomial 1"),
     }
 
 

@@ -8,6 +8,8 @@ One module per topic of the course:
 - :mod:`rsgeo.gcp` - polynomial GCP models, residuals, RMS, and the mapping protocol every
   model follows (``model(points)``, ``model.residuals(src, dst)``, ``model.inverse()``)
   (chapters 2-3);
+- :mod:`rsgeo.georef` - CRSs and datums (SAD69 -> SIRGAS 2000) through PROJ, and a complete
+  georeferencing run, ``georeference`` (chapter 2b);
 - :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4);
 - :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
 - :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm (chapter 6, the GA paper);

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from . import distortion, gcp, radiometry, resample
+from . import distortion, gcp, georef, radiometry, resample
 from ._checks import as_points
 from .matching import BITS_PER_GENE, decode, fitness
 
@@ -35,7 +35,9 @@ __all__ = [
     "check_design_matrix", "check_rms", "check_blunder", "check_degree_choice",
     "check_bilinear", "check_method_for_classes", "check_overshoot", "check_gain_offset",
     "check_truncation_levels", "check_filter_size", "check_fitness", "check_decode",
-    "check_suboptimal_segment",
+    "check_suboptimal_segment", "check_datum_shift_pixels",
+    "check_helmert", "check_projective_matrix", "check_model_choice",
+    "check_output_pixel_size", "check_grid_extent",
 ]
 
 
@@ -681,6 +683,59 @@ def check_degree_choice(order, gcps, is_check):
                           "does better on the check points.", " ".join(dict.fromkeys(hints)) or generic)
 
 
+def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size):
+    """The mean size of a datum shift at some points, in pixels of a given size.
+
+    Parameters
+    ----------
+    shift_px : float
+        The student's answer: the mean distance each point moves from
+        ``src_crs`` to ``dst_crs``, divided by the pixel size.
+    map_xy : (n, 2) array_like
+        The points' map (x, y) in ``src_crs``.
+    src_crs, dst_crs : str, int or rasterio CRS
+        E.g. SAD69 / UTM 21S and SIRGAS 2000 / UTM 21S.
+    pixel_size : float
+        Metres per pixel (20 for the CBERS CCD).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``shift_px`` is still ``...``.
+    ValueError
+        For a CRS that PROJ does not know or a pixel size that is not positive.
+
+    Examples
+    --------
+    >>> check_datum_shift_pixels(0.0, [[775445.0, 7369105.0]], 29191, 31981, 20.0).ok
+    False
+    """
+    size = float(pixel_size)
+    if not np.isfinite(size) or size <= 0:
+        raise ValueError(f"pixel_size must be a positive number of metres, got {pixel_size!r}")
+    dx, dy, distance = georef.datum_shift(as_points(map_xy, "map_xy"), src_crs, dst_crs)
+    expected = float(np.mean(distance)) / size
+    mistakes = [
+        (np.mean(distance), "That is the shift in metres; divide by the pixel size to get pixels."),
+        (np.mean(np.abs(dx)) / size, "That is only the easting's change; the shift is the distance "
+                                     "sqrt(dx² + dy²)."),
+        (np.mean(np.abs(dy)) / size, "That is only the northing's change; the shift is the distance "
+                                     "sqrt(dx² + dy²)."),
+        (np.mean(np.abs(dx) + np.abs(dy)) / size,
+         "|dx| + |dy| overstates the distance; use sqrt(dx² + dy²)."),
+        (np.mean(distance) * size, "Multiplying by the pixel size gives metres², not pixels: divide."),
+        (np.mean(dx) / size, "The shift's size is a distance, sqrt(dx² + dy²), not dx alone."),
+    ]
+    return _judge(shift_px, "shift_px", expected, 0.01,
+                  "Transform the points with rsgeo.georef.transform_points, take each point's "
+                  "distance sqrt(dx² + dy²), average, and divide by the pixel size.",
+                  mistakes, " px", mistake_rtol=0.01)
+
+
 # -- Chapter 4: resampling --------------------------------------------------
 
 def check_bilinear(value, window, dx, dy):
@@ -845,6 +900,132 @@ def check_overshoot(overshoot, image, cols, rows):
                   "Interpolate with method='cubic' on a float copy (so nothing is clipped) "
                   "and subtract the image's maximum from the interpolated maximum.", mistakes, " DN",
                   scale=scale, scale_name="the image's range (its step height)")
+
+
+def check_output_pixel_size(pixel_size, src_shape, transform):
+    """The pixel size gdalwarp chooses for a source: its diagonal rule.
+
+    Parameters
+    ----------
+    pixel_size : float
+        The student's answer, in map units (metres).
+    src_shape : (rows, cols)
+        The source image's size.
+    transform : affine.Affine
+        The source's geotransform (pixel -> map).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``pixel_size`` is still ``...``.
+
+    Examples
+    --------
+    >>> import affine
+    >>> check_output_pixel_size(20.0, (100, 100), affine.Affine(20, 0, 0, 0, -20, 0))
+    Correct: `pixel_size` = 20 m.
+    """
+    rows, cols = resample.check_shape(src_shape, "src_shape")
+    grid, _ = resample.suggested_grid((rows, cols), transform)
+    expected = float(grid.a)
+    corners_x, corners_y = transform @ (np.array([0.0, cols, 0.0, cols]),
+                                        np.array([0.0, rows, rows, 0.0]))
+    box = np.hypot(np.ptp(corners_x), np.ptp(corners_y))
+    diagonal = np.hypot(corners_x[1] - corners_x[0], corners_y[1] - corners_y[0])
+    x_size, y_size = np.hypot(transform.a, transform.d), np.hypot(transform.b, transform.e)
+    mistakes = [
+        (x_size, "That is the source's pixel width alone; gdalwarp keeps the number of pixels "
+                 "along the diagonal, which mixes width and height."),
+        (y_size, "That is the source's pixel height alone; gdalwarp keeps the number of pixels "
+                 "along the diagonal, which mixes width and height."),
+        ((x_size + y_size) / 2, "The mean of width and height is not the rule: divide the "
+                                "diagonal's length on the map by its length in pixels."),
+        (box / np.hypot(rows, cols), "That is the diagonal of the bounding box; the rule uses "
+                                     "the top-left to bottom-right corner of the image itself."),
+        (diagonal / (rows + cols), "Divide by the diagonal in pixels, sqrt(rows² + cols²), not "
+                                   "rows + cols."),
+        (np.hypot(rows, cols) / diagonal, "Upside down: map length over pixel count."),
+    ]
+    return _judge(pixel_size, "pixel_size", expected, 1e-6,
+                  "Take the top-left (0, 0) and bottom-right (cols, rows) corners to the map "
+                  "with the transform, and divide the distance between them by "
+                  "sqrt(rows² + cols²).", mistakes, " m", mistake_rtol=1e-4)
+
+
+def check_grid_extent(extent, src_shape, transform, resolution):
+    """West, north, rows and cols of gdalwarp's grid with ``-tr resolution -tap``.
+
+    Parameters
+    ----------
+    extent : sequence of four numbers
+        The student's answer: (west, north, rows, cols).
+    src_shape : (rows, cols)
+        The source image's size.
+    transform : affine.Affine
+        The source's geotransform (pixel -> map).
+    resolution : float
+        The output pixel size (``-tr``).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``extent`` is still ``...``.
+    ValueError
+        If ``resolution`` is not a positive number.
+
+    Examples
+    --------
+    >>> import affine
+    >>> check_grid_extent((0.0, 40.0, 2, 2), (4, 4), affine.Affine(10, 0, 0, 0, -10, 40), 20)
+    Correct: `extent` = (west 0, north 40, 2 rows, 2 cols).
+    """
+    size = resample.check_resolution(resolution)[0]
+    grid, (rows, cols) = resample.suggested_grid(src_shape, transform, resolution=size, tap=True)
+    natural, (n_rows, n_cols) = resample.suggested_grid(src_shape, transform)
+    answer = _require(extent, "extent")
+    form = ("`extent` must be four numbers, (west, north, rows, cols): the grid's left edge and "
+            "top edge in metres, then its size in pixels.")
+    try:
+        values = [float(v) for v in np.asarray(answer, dtype=object).ravel()]
+    except (TypeError, ValueError):
+        return Verdict(False, form)
+    if len(values) != 4 or not np.isfinite(values).all():
+        return Verdict(False, form)
+    west, north, n_r, n_c = values
+    if [west, north, n_r, n_c] == [grid.c, grid.f, rows, cols]:
+        return Verdict(True, f"`extent` = (west {west:.10g}, north {north:.10g}, {int(n_r)} rows, "
+                             f"{int(n_c)} cols).")
+    wrong = []
+    if west != grid.c:
+        wrong.append("west")
+    if north != grid.f:
+        wrong.append("north")
+    if (n_r, n_c) != (rows, cols):
+        wrong.append("the size")
+    message = "`extent`: " + ", ".join(wrong) + " not yet right."
+    if (west, north) == (natural.c, natural.f):
+        hint = ("Those are the footprint's own edges; -tap moves them outwards to multiples of "
+                "the resolution: floor(west / res) * res, ceil(north / res) * res.")
+    elif west == np.ceil(natural.c / size) * size or north == np.floor(natural.f / size) * size:
+        hint = ("Outwards: the west edge goes down (floor), the north edge up (ceil), so the "
+                "whole scene stays inside the grid.")
+    elif (n_r, n_c) == (round(n_rows * natural.a / size), round(n_cols * natural.a / size)):
+        hint = ("That is the size without -tap; after moving the edges outwards, count the "
+                "pixels between them: (east - west) / res and (north - south) / res.")
+    elif (n_r, n_c) == (cols, rows):
+        hint = "Rows come first, then columns: (west, north, rows, cols)."
+    else:
+        hint = ("Find the footprint's edges (the corners through the transform), move them out "
+                "to multiples of the resolution, then count pixels between them.")
+    return Verdict(False, message, hint)
 
 
 # -- Chapter 5: the regression paper ----------------------------------------
@@ -1259,3 +1440,214 @@ def check_suboptimal_segment(segment, result, truth):
         hint = ("Did you count from 0 (np.flatnonzero gives 0-based positions)? Segments are numbered "
                 "from 1: add 1.")
     return Verdict(False, f"segment {segment} is matched correctly.", hint)
+
+
+# -- Chapter 3b: choosing a transformation model ------------------------------
+
+_HELMERT_NAMES = ("a", "b", "c", "d")
+
+
+def _four_numbers(answer, name):
+    answer = _require(answer, name)
+    if isinstance(answer, (str, bytes)):
+        raise _WrongForm(f"`{name}` is text; the check needs four numbers (a, b, c, d).")
+    try:
+        array = np.asarray(answer, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise _WrongForm(f"`{name}` is not four numbers (a, b, c, d).") from None
+    if array.size != 4:
+        raise _WrongForm(f"`{name}` holds {array.size} value(s); the Helmert model has four "
+                         "unknowns, (a, b, c, d).")
+    if not np.isfinite(array).all():
+        raise _WrongForm(f"`{name}` holds NaN or infinite values.")
+    return array
+
+
+def check_helmert(parameters, src, dst):
+    """A Helmert (similarity) model fitted by hand: u = a x - b y + c, v = b x + a y + d.
+
+    Parameters
+    ----------
+    parameters : sequence of 4 floats
+        The student's (a, b, c, d), by least squares on all the points.
+    src, dst : (n, 2) array_like
+        The points the task gives (both systems with y up).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``parameters`` is still ``...``.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10]], dtype=float)
+    >>> check_helmert([2, 0, 1, 1], src, src * 2 + 1)
+    Correct: (a, b, c, d) fit all the points by least squares.
+    """
+    general = ("Two rows per point: [x, -y, 1, 0] for u and [y, x, 0, 1] for v; solve the "
+               "2n × 4 system with np.linalg.lstsq.")
+    try:
+        value = _four_numbers(parameters, "parameters")
+    except _WrongForm as form:
+        return form.verdict(general)
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    matrix = gcp.fit_transform(src, dst, "helmert").matrix
+    expected = np.array([matrix[0, 0], matrix[1, 0], matrix[0, 2], matrix[1, 2]])
+    scale = np.abs(expected).max()
+    if np.allclose(value, expected, rtol=1e-6, atol=1e-9 * scale):
+        return Verdict(True, "(a, b, c, d) fit all the points by least squares.")
+    wrong = [name for name, got, want in zip(_HELMERT_NAMES, value, expected)
+             if not np.isclose(got, want, rtol=1e-6, atol=1e-9 * scale)]
+    message = f"{', '.join(wrong)} {'is' if len(wrong) == 1 else 'are'} not right"
+    if len(wrong) == 1:
+        i = _HELMERT_NAMES.index(wrong[0])
+        message += f": `{wrong[0]}` is {_how_far(value[i], expected[i])}"
+    message += "."
+    exact = gcp.fit_transform(src[:2], dst[:2], "helmert").matrix
+    mistakes = [
+        (np.array([expected[0], -expected[1], expected[2], expected[3]]),
+         "b has the wrong sign: the model is u = a x − b y + c, v = b x + a y + d."),
+        (np.array([exact[0, 0], exact[1, 0], exact[0, 2], exact[1, 2]]),
+         "That is the exact model through the first two points; use every point, by least "
+         "squares."),
+        (np.array([expected[2], expected[3], expected[0], expected[1]]),
+         "The order is (a, b, c, d): the scale-rotation pair first, then the shifts."),
+    ]
+    for wrong_value, hint in mistakes:
+        if np.allclose(value, wrong_value, rtol=1e-6, atol=1e-9 * scale):
+            return Verdict(False, message, hint)
+    return Verdict(False, message, general)
+
+
+def check_projective_matrix(matrix, src, dst):
+    """A projective (homography) matrix computed from exactly four points.
+
+    Parameters
+    ----------
+    matrix : (3, 3) array_like
+        The student's homography, mapping ``src`` to ``dst`` (any scale).
+    src, dst : (4, 2) array_like
+        The four points the task gives.
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``matrix`` is still ``...``.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float)
+    >>> check_projective_matrix(np.diag([2.0, 2.0, 1.0]), src, src * 2)
+    Correct: the matrix maps the four points exactly.
+    """
+    general = ("Multiply out the denominator: u (c1 x + c2 y + 1) = a0 + a1 x + a2 y gives one "
+               "linear equation in the 8 unknowns per coordinate; solve the 8 × 8 system and put "
+               "h33 = 1.")
+    try:
+        matrix = _require(matrix, "matrix")
+        try:
+            array = np.asarray(matrix, dtype=float)
+        except (TypeError, ValueError):
+            raise _WrongForm("`matrix` is not a 3 × 3 table of numbers.") from None
+        if array.shape != (3, 3):
+            raise _WrongForm(f"`matrix` has shape {array.shape}; a homography is 3 × 3 "
+                             "(reshape the 8 unknowns and h33 = 1).")
+        if not np.isfinite(array).all():
+            raise _WrongForm("`matrix` holds NaN or infinite values.")
+        if abs(array[2, 2]) < 1e-12:
+            raise _WrongForm("`matrix[2, 2]` is zero; with the usual convention it is 1.")
+    except _WrongForm as form:
+        return form.verdict(general)
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+
+    def miss(h, a, b):
+        with np.errstate(all="ignore"):
+            mapped = np.column_stack([a, np.ones(len(a))]) @ h.T
+            return float(np.max(np.hypot(*(mapped[:, :2] / mapped[:, 2:] - b).T)))
+
+    extent = float(np.abs(dst - dst.mean(axis=0)).max())
+    error = miss(array, src, dst)
+    if error <= 1e-6 * extent:
+        return Verdict(True, "the matrix maps the four points exactly.")
+    message = f"the matrix misses the points by up to {error:.3g} (in dst units)."
+    if miss(array.T, src, dst) <= 1e-6 * extent:
+        return Verdict(False, message, "The matrix is transposed: H @ [x, y, 1] must give "
+                                       "[u·w, v·w, w], so row 0 holds the u coefficients.")
+    if miss(array, dst, src) <= 1e-6 * extent:
+        return Verdict(False, message, "It maps dst to src: the task asks for src -> dst.")
+    if np.allclose(array[2, :2], 0):
+        return Verdict(False, message, "The last row is (0, 0, 1): that is an affine model, which "
+                                       "cannot pass through four general points. " + general)
+    return Verdict(False, message, general)
+
+
+def check_model_choice(model, src, dst, is_check):
+    """The model (a label of ``rsgeo.gcp.GEOREFERENCER_MODELS``) with the lowest check-point RMS.
+
+    Parameters
+    ----------
+    model : str
+        The student's answer, e.g. "polynomial 1".
+    src, dst : (n, 2) array_like
+        All points (map -> image).
+    is_check : (n,) array_like of bool
+        The check points; the others are fitted.
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``model`` is still ``...``.
+
+    Examples
+    --------
+    >>> from rsgeo import synthetic
+    >>> gcps = synthetic.distorted_pair(seed=2).gcps
+    >>> print(check_model_choice("affine", gcps.map_xy, gcps.image_xy,
+    ...                          np.arange(16) % 3 == 0).message)
+    `model` is 'affine': the model is one of 'linear', 'helmert', 'polynomial 1', 'polynomial 2', 'projective' or 'tps'.
+    """
+    is_check = np.asarray(is_check, dtype=bool)
+    fitted = int((~is_check).sum())
+    models = [m for m in gcp.GEOREFERENCER_MODELS if fitted > gcp.min_gcps(m[1], m[2])]
+    labels = [label for label, _, _ in models]
+    generic = ("Fit each model on the GCPs that are not check points and compare their RMS on "
+               "the check points; the fitting RMS always prefers more parameters.")
+    try:
+        model = _require(model, "model")
+        if not isinstance(model, str):
+            raise _WrongForm(f"`model` is {model!r}; the check needs the model's name as text, "
+                             "e.g. 'polynomial 1'.")
+        if model not in labels:
+            listed = ", ".join(repr(label) for label in labels[:-1]) + f" or {labels[-1]!r}"
+            raise _WrongForm(f"`model` is {model!r}: the model is one of {listed}.")
+    except _WrongForm as form:
+        return form.verdict(generic)
+    table = gcp.compare_models(src, dst, is_check, models)
+    check = table["check RMS (px)"]
+    best = check.idxmin()
+    if model == best:
+        return Verdict(True, f"{model}: check-point RMS {check[model]:.2f} px, the lowest.")
+    hints = []
+    if model == table["fitting RMS (px)"].idxmin():
+        hints.append("That model has the lowest RMS on the GCPs used in the fit (a TPS's is "
+                     "always zero): judge on the check points.")
+    everything = gcp.compare_models(src, dst, None, models)["fitting RMS (px)"]
+    if model == everything.idxmin() and not hints:
+        hints.append("That is the lowest RMS of a fit on ALL the points; the check points must "
+                     "stay out of the fit.")
+    return Verdict(False, f"{model} has a check-point RMS of {check[model]:.2f} px; another "
+                          "model does better on the check points.", " ".join(hints) or generic)

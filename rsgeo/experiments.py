@@ -209,8 +209,10 @@ def real_scene():
     adjustment_transform = (affine.Affine.translation(centre[0] + 150, centre[1] - 90)
                             @ affine.Affine.rotation(5)
                             @ affine.Affine(30, 0, -106 * 30, 0, -30, 106 * 30))
+    # scale=1.0: plain 2 x 2 bilinear sampling of the 20 m scene at 30 m, as chapter 6 does
+    # (gdalwarp would widen the kernel for this downsampling; chapter 4 shows the difference)
     adjustment = resample.warp(vegetation, ~ccd.transform, (212, 212), adjustment_transform,
-                               method="bilinear", nodata=-1.0)
+                               method="bilinear", nodata=-1.0, scale=1.0)
     reference = regions.keep_largest(
         regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
     moved = regions.keep_largest(regions.forest_segments(adjustment, threshold=0.55, min_area=11), 8)

@@ -22,8 +22,9 @@ from dataclasses import dataclass, field
 from math import comb
 
 import numpy as np
+from scipy.interpolate import RBFInterpolator
 
-from ._checks import as_points, check_range
+from ._checks import as_points, as_shape, check_range
 
 __all__ = [
     "ORDERS", "min_gcps", "term_names", "design_matrix", "GeometricModel", "InverseModel",
@@ -31,7 +32,8 @@ __all__ = [
     "rms_error", "mean_error", "refine_gcps", "fit_with_check_points", "leave_one_out_errors",
     "condition_number", "hull_coverage", "predicted_error_map", "measure_shifts",
     "GeotransformCheck", "compare_with_geotransform", "offsets_against_reference", "GCPSet",
-    "read_points", "write_points",
+    "read_points", "write_points", "KINDS", "MatrixModel", "TPSModel", "fit_transform",
+    "GEOREFERENCER_MODELS", "transform_leave_one_out", "compare_models",
 ]
 
 ORDERS = (1, 2, 3)
@@ -47,34 +49,49 @@ def _check_order(order):
     return int(order)
 
 
-def min_gcps(order):
-    """Minimum number of GCPs that determine a polynomial of this degree: (n+1)(n+2)/2.
+def min_gcps(kind, order=None):
+    """Minimum number of GCPs that determine a model: (n+1)(n+2)/2 for a polynomial.
 
     Lecture, slide "Transformações polinomiais": the degree fixes the minimum
-    number of GCPs needed to solve the linear system.
+    number of GCPs needed to solve the linear system. ``min_gcps(order)`` with
+    an integer is the polynomial of that order. Other kinds: "linear" and
+    "helmert" 2, "projective" 4, "tps" 3 (its affine part needs three
+    non-collinear points; GDAL accepts fewer and returns a degenerate mapping).
 
     Parameters
     ----------
-    order : {1, 2, 3}
-        Degree of the polynomial.
+    kind : {"linear", "helmert", "polynomial", "projective", "tps"} or {1, 2, 3}
+        Model kind, or directly the polynomial's degree.
+    order : {1, 2, 3} or None
+        Degree, only with ``kind="polynomial"``.
 
     Returns
     -------
     int
-        (order + 1)(order + 2) / 2: 3, 6 or 10.
+        3, 6 or 10 for polynomials of order 1, 2, 3; 2, 2, 4, 3 for the others.
 
     Raises
     ------
     ValueError
-        If the order is not 1, 2 or 3.
+        If the kind is unknown, the order is not 1, 2 or 3, a polynomial has no
+        order or another kind has one.
 
     Examples
     --------
     >>> [min_gcps(n) for n in (1, 2, 3)]
     [3, 6, 10]
+    >>> min_gcps("projective"), min_gcps("polynomial", 2)
+    (4, 6)
     """
-    order = _check_order(order)
-    return comb(order + 2, 2)
+    if not isinstance(kind, str):
+        if order is not None:
+            raise ValueError("give the polynomial's order once: min_gcps(order) or "
+                             "min_gcps('polynomial', order)")
+        kind, order = "polynomial", kind
+    order = _check_kind(kind, order)
+    if kind == "polynomial":
+        return comb(order + 2, 2)
+    return _FIXED_MINIMUM[kind]
 
 
 _minimum_gcps = min_gcps
@@ -347,6 +364,19 @@ class PolynomialModel(GeometricModel):
     scale: float
     src: np.ndarray = field(repr=False)
     dst: np.ndarray = field(repr=False)
+
+    kind = "polynomial"
+
+    @property
+    def n_parameters(self):
+        """Free parameters: two coefficients per term.
+
+        Returns
+        -------
+        int
+            6, 12 or 20 for orders 1, 2, 3.
+        """
+        return int(self.coefficients.size)
 
     def __call__(self, points):
         scaled_terms, _, _ = _normalised_design(as_points(points), self.order, self.origin, self.scale)
@@ -1120,16 +1150,6 @@ def _check_transform(transform, name):
     return transform
 
 
-def _check_shape(shape):
-    try:
-        rows, cols = (int(n) for n in shape)
-    except (TypeError, ValueError):
-        raise ValueError(f"shape must be (rows, cols), got {shape!r}") from None
-    if rows < 1 or cols < 1 or (rows, cols) != tuple(shape):
-        raise ValueError(f"shape must be two positive whole numbers (rows, cols), got {shape!r}")
-    return rows, cols
-
-
 @dataclass
 class GeotransformCheck:
     """A map -> image model compared with an image's own geotransform over the scene.
@@ -1206,7 +1226,7 @@ def compare_with_geotransform(model, transform, shape, step=1):
     (1.5, [0.0, 1.5])
     """
     transform = _check_transform(transform, "transform")
-    rows, cols = _check_shape(shape)
+    rows, cols = as_shape(shape)
     if int(step) != step or step < 1:
         raise ValueError(f"step must be a positive whole number of pixels, got {step!r}")
     grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
@@ -1366,6 +1386,68 @@ class GCPSet:
         """
         return fit_polynomial(self.map_xy[self.enabled], self.image_xy[self.enabled], order)
 
+    def to_crs(self, crs):
+        """The same GCPs with their map coordinates transformed to ``crs`` by PROJ.
+
+        Image coordinates, flags, ids and notes are kept. PROJ picks the datum
+        transformation GDAL would (SAD69 -> SIRGAS 2000 offline: EPSG:15485).
+
+        Parameters
+        ----------
+        crs : str, int or rasterio.crs.CRS
+            The target CRS ("EPSG:31981", 31981, a WKT).
+
+        Returns
+        -------
+        GCPSet
+            With ``crs`` set to the target's WKT.
+
+        Raises
+        ------
+        ValueError
+            If this set has no CRS, or PROJ does not know either CRS.
+        """
+        from rasterio.warp import transform
+
+        if self.crs is None:
+            raise ValueError("these GCPs have no CRS (crs=None): set the CRS their map "
+                             "coordinates are in before transforming them")
+        source, target = _as_crs(self.crs, "the GCPs' crs"), _as_crs(crs, "crs")
+        xs, ys = transform(source, target, self.map_xy[:, 0], self.map_xy[:, 1])
+        return GCPSet(np.column_stack([xs, ys]), self.image_xy.copy(), self.enabled.copy(),
+                      list(self.ids), target.to_wkt(), list(self.notes))
+
+    def combine(self, other):
+        """This set followed by ``other``; refuses to mix map coordinates of two CRSs.
+
+        Parameters
+        ----------
+        other : GCPSet
+            More GCPs of the same image, in the same CRS (or both without one).
+
+        Returns
+        -------
+        GCPSet
+
+        Raises
+        ------
+        ValueError
+            If the CRSs differ (transform one with :meth:`to_crs` first) or
+            only one of the sets has a CRS.
+        """
+        if not isinstance(other, GCPSet):
+            raise ValueError(f"other must be a GCPSet, got {type(other).__name__}")
+        if (self.crs is None) != (other.crs is None) or (
+                self.crs is not None and _as_crs(self.crs) != _as_crs(other.crs)):
+            names = [_crs_name(self.crs), _crs_name(other.crs)]
+            raise ValueError(f"cannot mix GCPs in {names[0]} with GCPs in {names[1]}: "
+                             "transform one set with .to_crs() first")
+        return GCPSet(np.vstack([self.map_xy, other.map_xy]),
+                      np.vstack([self.image_xy, other.image_xy]),
+                      np.concatenate([self.enabled, other.enabled]),
+                      list(self.ids) + list(other.ids), self.crs,
+                      list(self.notes) + list(other.notes))
+
     def table(self, model=None):
         """The GCP table as a pandas DataFrame; with a model, residuals in pixels.
 
@@ -1402,6 +1484,29 @@ class GCPSet:
             reverse = fit_polynomial(self.image_xy[self.enabled], self.map_xy[self.enabled], model.order)
             table["residual_map"] = residuals(reverse, self.image_xy, self.map_xy)[2]
         return table.set_index("id")
+
+
+def _as_crs(crs, name="crs"):
+    """A rasterio CRS, or ValueError for one that PROJ does not know."""
+    from rasterio.crs import CRS
+    from rasterio.errors import CRSError
+
+    if isinstance(crs, CRS):
+        return crs
+    try:
+        return CRS.from_epsg(crs) if isinstance(crs, (int, np.integer)) else CRS.from_user_input(crs)
+    except (CRSError, TypeError, ValueError) as error:
+        raise ValueError(f"{name} {str(crs)[:60]!r} is not a CRS that PROJ knows ({error}); give "
+                         "an EPSG code such as 'EPSG:31983', a WKT or a PROJ string") from None
+
+
+def _crs_name(crs):
+    """A short name for a CRS in messages: 'EPSG:29191', or 'no CRS'."""
+    if crs is None:
+        return "no CRS"
+    value = _as_crs(crs)
+    epsg = value.to_epsg()
+    return f"EPSG:{epsg}" if epsg else value.to_string()[:40]
 
 
 def read_points(path):
@@ -1495,3 +1600,537 @@ def write_points(path, gcps, model=None):
             values = (gcps.map_xy[i, 0], gcps.map_xy[i, 1], gcps.image_xy[i, 0], -gcps.image_xy[i, 1])
             handle.write(",".join(repr(float(v)) for v in values)
                          + f",{int(gcps.enabled[i])},{float(dx[i])!r},{float(-dy[i])!r},{float(distance[i])!r}\n")
+
+
+# --- Transformation models: QGIS's Georeferencer choices (issue 16) ---------------------------
+
+KINDS = ("linear", "helmert", "polynomial", "projective", "tps")
+
+_FIXED_MINIMUM = {"linear": 2, "helmert": 2, "projective": 4, "tps": 3}
+
+
+def _check_kind(kind, order):
+    """Check ``kind`` and ``order`` together; return the polynomial order (None otherwise)."""
+    if kind not in KINDS:
+        raise ValueError(f"unknown transformation kind {kind!r}; choose one of "
+                         f"{', '.join(map(repr, KINDS))}")
+    if kind == "polynomial":
+        if order is None:
+            raise ValueError("kind 'polynomial' needs an order: 1, 2 or 3")
+        return _check_order(order)
+    if order is not None:
+        raise ValueError(f"kind {kind!r} has no order (got order={order!r}); "
+                         "only 'polynomial' takes one")
+    return None
+
+
+def _fit_inputs(src, dst, kind, order):
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    order = _check_kind(kind, order)
+    if len(src) != len(dst):
+        raise ValueError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} points")
+    needed = min_gcps(kind, order)
+    if len(src) < needed:
+        what = f"order-{order} polynomial" if kind == "polynomial" else f"{kind!r} model"
+        raise ValueError(f"a {what} needs at least {needed} GCPs, got {len(src)}")
+    return src, dst, order
+
+
+def _centre_scale(points):
+    """Mean and RMS distance of the centred coordinates (1 if the points coincide)."""
+    origin = points.mean(axis=0)
+    scale = float(np.sqrt(np.mean((points - origin) ** 2))) or 1.0
+    return origin, scale
+
+
+def _normaliser(points):
+    """3×3 matrix that centres ``points`` and divides by their RMS coordinate (scikit-image's)."""
+    origin, scale = _centre_scale(points)
+    matrix = np.eye(3)
+    matrix[:2, 2] = -origin
+    matrix[:2] /= scale
+    return matrix
+
+
+class MatrixModel(GeometricModel):
+    """A model that is a 3×3 homogeneous matrix: linear, Helmert or projective.
+
+    ``model(p)`` = (H [x, y, 1]ᵀ) divided by its third component. Its
+    :meth:`inverse` is exact (the inverse matrix), of the same kind.
+
+    Parameters
+    ----------
+    matrix : (3, 3) array_like
+        Homogeneous matrix, ``matrix[2, 2]`` = 1.
+    kind : {"linear", "helmert", "projective"}
+    src, dst : (n, 2) ndarray or None
+        The GCPs the model was fitted on (swapped in the inverse).
+
+    Attributes
+    ----------
+    kind : str
+    n_parameters : int
+        Free parameters: 4 (linear, Helmert) or 8 (projective).
+    """
+
+    _PARAMETERS = {"linear": 4, "helmert": 4, "projective": 8}
+
+    def __init__(self, matrix, kind, src=None, dst=None):
+        matrix = np.asarray(matrix, dtype=np.float64)
+        if matrix.shape != (3, 3) or not np.isfinite(matrix).all():
+            raise ValueError(f"matrix must be a finite 3×3 array, got shape {matrix.shape}")
+        if kind not in self._PARAMETERS:
+            raise ValueError(f"a matrix model's kind must be one of {list(self._PARAMETERS)}, "
+                             f"got {kind!r}")
+        self.matrix = matrix / matrix[2, 2]
+        self.kind = kind
+        self.n_parameters = self._PARAMETERS[kind]
+        self.src, self.dst = src, dst
+
+    def __call__(self, points):
+        """Map (n, 2) points through the matrix.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+
+        Returns
+        -------
+        ndarray, shape (n, 2)
+
+        Raises
+        ------
+        ValueError
+            If the points are not (n, 2) finite numbers, or a point lies on a
+            projective model's vanishing line (it maps to infinity).
+        """
+        points = as_points(points)
+        homogeneous = np.column_stack([points, np.ones(len(points))]) @ self.matrix.T
+        w = homogeneous[:, 2]
+        if (np.abs(w) < 1e-12).any():
+            raise ValueError("some points lie on the projective model's vanishing line and map "
+                             "to infinity; keep the points inside the GCPs' area")
+        return homogeneous[:, :2] / w[:, np.newaxis]
+
+    def inverse(self):
+        """The exact inverse: the inverse matrix, same kind, src and dst swapped.
+
+        Returns
+        -------
+        MatrixModel
+
+        Raises
+        ------
+        ValueError
+            If the matrix is singular (the model collapses the plane).
+        """
+        if abs(np.linalg.det(self.matrix)) < 1e-300:
+            raise ValueError("the model's matrix is singular and has no inverse")
+        return MatrixModel(np.linalg.inv(self.matrix), self.kind, self.dst, self.src)
+
+    def __repr__(self):
+        return f"MatrixModel(kind={self.kind!r}, matrix={self.matrix.tolist()!r})"
+
+
+class TPSModel(GeometricModel):
+    """Thin-plate spline through every GCP (GDAL's ``-tps``).
+
+    u(x, y) = a0 + a1 x + a2 y + Σ w_i r_i² log r_i, the same for v, with
+    r_i the distance to GCP i; the weights make it pass exactly through every
+    GCP and its bending energy is the smallest that does. Evaluated with
+    SciPy's ``RBFInterpolator(kernel="thin_plate_spline", degree=1)``.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) ndarray
+        The GCPs, checked by :func:`fit_transform`.
+
+    Attributes
+    ----------
+    kind : str
+        "tps".
+    n_parameters : int
+        2 (n + 3): n weights and 3 affine coefficients per output.
+    """
+
+    kind = "tps"
+
+    def __init__(self, src, dst):
+        self.src, self.dst = src, dst
+        self.n_parameters = 2 * (len(src) + 3)
+        self._spline = RBFInterpolator(src, dst, kernel="thin_plate_spline", degree=1)
+
+    def __call__(self, points):
+        """Evaluate the spline at (n, 2) points.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+
+        Returns
+        -------
+        ndarray, shape (n, 2)
+
+        Raises
+        ------
+        ValueError
+            If the points are not (n, 2) finite numbers.
+        """
+        return self._spline(as_points(points))
+
+    def reverse(self):
+        """A thin-plate spline fitted the other way round (dst -> src), as GDAL does.
+
+        GDAL's TPS transformer fits a second spline from dst to src on the
+        same GCPs (what rasterio's ``GCPTransformer(gcps, tps=True)`` returns in
+        that direction). Both pass through every GCP, so they are inverse at
+        the GCPs and only approximately so between them (a tenth of a pixel).
+
+        Returns
+        -------
+        TPSModel
+
+        Raises
+        ------
+        ValueError
+            If the dst points are repeated or collinear.
+        """
+        return fit_transform(self.dst, self.src, "tps")
+
+    def jacobian(self, points, step=1e-4):
+        """Partial derivatives at each point, shape (n, 2, 2), by central differences.
+
+        ``step`` is relative to the GCPs' src extent; the spline is smooth, so
+        the error is of order step².
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+        step : float
+            Difference step, relative to the src extent.
+
+        Returns
+        -------
+        ndarray, shape (n, 2, 2)
+            ``J[i, k, l]`` = d output_k / d input_l at point i.
+
+        Raises
+        ------
+        ValueError
+            If the points are not (n, 2) finite numbers.
+        """
+        points = as_points(points)
+        h = check_range(step, "step", low=1e-12, high=1e-1) * (
+            float(np.abs(self.src - self.src.mean(axis=0)).max()) or 1.0)
+        columns = []
+        for axis in range(2):
+            offset = np.zeros(2)
+            offset[axis] = h
+            columns.append((self(points + offset) - self(points - offset)) / (2 * h))
+        return np.stack(columns, axis=-1)
+
+    def inverse(self, tolerance=1e-10, max_iterations=30):
+        """The exact inverse (dst -> src), by Newton's method on this spline.
+
+        Each point starts from :meth:`reverse` (the spline fitted the other way
+        round) and is polished until model(p) = q within ``tolerance`` times the
+        dst extent. This is what GDAL's warper uses: ``gdalwarp -tps`` with a
+        spline fitted image -> map maps every output cell back by inverting it.
+
+        Parameters
+        ----------
+        tolerance : float
+            Largest accepted ``|model(p) - q|``, relative to the extent of ``dst``.
+        max_iterations : int
+
+        Returns
+        -------
+        InverseModel
+
+        Raises
+        ------
+        ValueError
+            If the reverse spline cannot be fitted (repeated or collinear dst).
+        """
+        start = self.reverse()
+        extent = float(np.abs(self.dst - self.dst.mean(axis=0)).max()) or 1.0
+        limit = check_range(tolerance, "tolerance", low=0, why="relative to the dst extent") * extent
+
+        def solve(targets):
+            points = start(targets)
+            error = np.full(len(targets), np.inf)
+            for _ in range(int(max_iterations)):
+                difference = self(points) - targets
+                error = np.hypot(difference[:, 0], difference[:, 1])
+                if not (error > limit).any():
+                    break
+                jacobian = self.jacobian(points)
+                usable = np.abs(np.linalg.det(jacobian)) > 1e-300
+                step = np.zeros_like(points)
+                step[usable] = np.linalg.solve(jacobian[usable], difference[usable][..., None])[..., 0]
+                points = points - step
+            failed = ~(error <= limit)
+            if failed.any():
+                raise ValueError(
+                    f"the thin-plate spline has no inverse at {failed.sum()} of {len(targets)} "
+                    "points: Newton's method did not converge (the spline folds there); keep "
+                    "the points inside the GCPs' area")
+            return points
+
+        return InverseModel(self, solve)
+
+    def __repr__(self):
+        return f"TPSModel(n_gcps={len(self.src)})"
+
+
+def _fit_linear(src, dst):
+    """Scale and offset per axis: u = a x + c, v = b y + d (QGIS's Linear, a world file)."""
+    matrix = np.eye(3)
+    for axis in range(2):
+        x = src[:, axis] - src[:, axis].mean()
+        if not np.abs(x).max() > 1e-12 * max(1.0, np.abs(src[:, axis]).max()):
+            raise ValueError(f"a 'linear' model needs GCPs at two different {'xy'[axis]} "
+                             "coordinates at least; spread the GCPs over the image")
+        scale = float(x @ (dst[:, axis] - dst[:, axis].mean()) / (x @ x))
+        matrix[axis, axis] = scale
+        matrix[axis, 2] = dst[:, axis].mean() - scale * src[:, axis].mean()
+    return MatrixModel(matrix, "linear", src, dst)
+
+
+def _fit_helmert(src, dst):
+    """Similarity by least squares on centred coordinates (the same as Umeyama's solution).
+
+    The handedness (with or without a reflection, as from map y-up to image rows-down) is the
+    one the GCPs call for: the sign of their cross-covariance's determinant."""
+    src_origin, dst_origin = src.mean(axis=0), dst.mean(axis=0)
+    p, q = src - src_origin, dst - dst_origin
+    spread = float((p**2).sum())
+    if not spread > 0 or np.linalg.matrix_rank(p, tol=1e-12 * np.sqrt(spread)) < 1:
+        raise ValueError("a 'helmert' model needs at least two distinct GCPs; "
+                         "these all fall on the same point")
+    flip = 1.0 if np.linalg.det(p.T @ q) >= 0 else -1.0
+    q = q * [1.0, flip]
+    a = float((p[:, 0] * q[:, 0] + p[:, 1] * q[:, 1]).sum() / spread)
+    b = float((p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]).sum() / spread)
+    linear = np.array([[a, -b], [flip * b, flip * a]])
+    matrix = np.eye(3)
+    matrix[:2, :2] = linear
+    matrix[:2, 2] = dst_origin - linear @ src_origin
+    return MatrixModel(matrix, "helmert", src, dst)
+
+
+def _fit_projective(src, dst):
+    """Normalised direct linear transform (Hartley), smallest singular vector: the estimate
+    of scikit-image's ProjectiveTransform and of QGIS's Georeferencer."""
+    for name, points in (("src", src), ("dst", dst)):
+        centred = points - points.mean(axis=0)
+        singular = np.linalg.svd(centred, compute_uv=False)
+        if not singular[1] > 1e-9 * max(singular[0], 1e-300):
+            raise ValueError(f"the {name} points are collinear (or coincide): a 'projective' "
+                             "model needs at least 4 GCPs, no three of them on one line, "
+                             "spread over the image")
+    src_norm, dst_norm = _normaliser(src), _normaliser(dst)
+    s = np.column_stack([src, np.ones(len(src))]) @ src_norm.T
+    d = np.column_stack([dst, np.ones(len(dst))]) @ dst_norm.T
+    zero = np.zeros((len(s), 3))
+    rows_u = np.hstack([s, zero, -s * d[:, :1]])
+    rows_v = np.hstack([zero, s, -s * d[:, 1:2]])
+    system = np.vstack([rows_u, rows_v])
+    _, singular, vt = np.linalg.svd(system)
+    if len(singular) >= 8 and not singular[7] > 1e-10 * singular[0]:
+        raise ValueError("the GCPs do not determine a 'projective' model: three of the four "
+                         "are collinear or points repeat; use 4 GCPs, no three on one line")
+    h = vt[-1].reshape(3, 3)
+    if abs(h[2, 2]) < 1e-12 * np.abs(h).max():
+        raise ValueError("the GCPs put the projective model's vanishing line through their "
+                         "centre; they are degenerate (check for swapped points)")
+    matrix = np.linalg.inv(dst_norm) @ h @ src_norm
+    return MatrixModel(matrix, "projective", src, dst)
+
+
+def _fit_tps(src, dst):
+    _, first = np.unique(src, axis=0, return_index=True)
+    if len(first) < len(src):
+        repeated = sorted(set(range(len(src))) - set(first.tolist()))[:5]
+        raise ValueError(f"a 'tps' model needs distinct src points, but rows {repeated} repeat "
+                         "an earlier point (a spline cannot pass through two targets at one "
+                         "place); remove the duplicate GCPs")
+    centred = (src - src.mean(axis=0)) / (np.abs(src - src.mean(axis=0)).max() or 1.0)
+    if np.linalg.matrix_rank(np.column_stack([np.ones(len(src)), centred]), tol=1e-9) < 3:
+        raise ValueError("a 'tps' model needs at least 3 GCPs that are not collinear (its affine "
+                         "part is fixed by them); spread the GCPs over the image")
+    return TPSModel(src, dst)
+
+
+def fit_transform(src, dst, kind, order=None):
+    """Fit one of QGIS's Georeferencer models to GCPs, mapping ``src`` to ``dst``.
+
+    ============  =====================================================  ==========
+    kind          model                                                  min GCPs
+    ============  =====================================================  ==========
+    "linear"      u = a x + c, v = b y + d (scale and offset per axis)   2
+    "helmert"     rotation, one scale, translation (similarity)          2
+    "polynomial"  degree ``order`` 1-3, GDAL's least squares             3, 6, 10
+    "projective"  8-parameter plane homography (tilted frame camera)     4
+    "tps"         thin-plate spline, exact at every GCP (GDAL ``-tps``)  3
+    ============  =====================================================  ==========
+
+    Every model follows the protocol of :class:`GeometricModel` and has
+    ``kind`` and ``n_parameters``. ``inverse()`` is exact for linear, Helmert
+    and projective (matrix inverse) and for polynomials (Newton's method);
+    a TPS's inverse is a second spline fitted the other way round, as GDAL
+    does. Helmert includes a reflection when the GCPs need one (map y up,
+    image rows down).
+
+    Parameters
+    ----------
+    src : (n, 2) array_like
+        Coordinates the model is applied to (for resampling: map x, y).
+    dst : (n, 2) array_like
+        Coordinates it must reproduce (for resampling: image col, row).
+    kind : {"linear", "helmert", "polynomial", "projective", "tps"}
+    order : {1, 2, 3} or None
+        Only for ``kind="polynomial"``.
+
+    Returns
+    -------
+    GeometricModel
+        :class:`MatrixModel`, :class:`PolynomialModel` or :class:`TPSModel`.
+
+    Raises
+    ------
+    ValueError
+        Unknown kind; an order for a kind that has none (or none for a
+        polynomial); fewer GCPs than ``min_gcps(kind, order)``; collinear
+        points for projective, TPS or polynomial; repeated points for TPS.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10]], dtype=float)
+    >>> model = fit_transform(src, src * 2 + 1, "helmert")
+    >>> model.kind, model.n_parameters, model([[5.0, 5.0]]).round(6).tolist()
+    ('helmert', 4, [[11.0, 11.0]])
+    """
+    src, dst, order = _fit_inputs(src, dst, kind, order)
+    if kind == "polynomial":
+        return fit_polynomial(src, dst, order)
+    fit = {"linear": _fit_linear, "helmert": _fit_helmert, "projective": _fit_projective,
+           "tps": _fit_tps}[kind]
+    return fit(src, dst)
+
+
+#: The models QGIS's Georeferencer offers, as (label, kind, order).
+GEOREFERENCER_MODELS = (("linear", "linear", None), ("helmert", "helmert", None),
+                        ("polynomial 1", "polynomial", 1), ("polynomial 2", "polynomial", 2),
+                        ("polynomial 3", "polynomial", 3), ("projective", "projective", None),
+                        ("tps", "tps", None))
+
+
+def transform_leave_one_out(src, dst, kind, order=None):
+    """Leave-one-out error of every GCP for any model kind.
+
+    GCP i is left out, the model is fitted on the others, and its distance
+    from where that model puts it is measured: an honest error (the GCP did not
+    pull the model towards itself), the only one a TPS has (its fitting
+    residuals are zero).
+
+    Parameters
+    ----------
+    src, dst : (n, 2) array_like
+        The GCPs (src -> dst, for resampling map -> image).
+    kind : str
+        As :func:`fit_transform`.
+    order : {1, 2, 3} or None
+        For ``kind="polynomial"`` only.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        Distance of each GCP from the model fitted without it, in dst units.
+
+    Raises
+    ------
+    ValueError
+        As :func:`fit_transform`, or if there are fewer than
+        ``min_gcps(kind, order) + 1`` GCPs.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5]], dtype=float)
+    >>> transform_leave_one_out(src, src * 2, "helmert").round(9) + 0.0
+    array([0., 0., 0., 0., 0.])
+    """
+    src, dst, order = _fit_inputs(src, dst, kind, order)
+    needed = min_gcps(kind, order) + 1
+    if len(src) < needed:
+        raise ValueError(f"leave-one-out needs at least {needed} GCPs for this model "
+                         f"(one more than its minimum), got {len(src)}")
+    errors = np.empty(len(src))
+    for i in range(len(src)):
+        keep = np.arange(len(src)) != i
+        model = fit_transform(src[keep], dst[keep], kind, order)
+        errors[i] = float(np.hypot(*(model(src[i:i + 1])[0] - dst[i])))
+    return errors
+
+
+def compare_models(src, dst, is_check=None, models=GEOREFERENCER_MODELS):
+    """One row per model: parameters, minimum GCPs, fitting RMS, leave-one-out RMS, check RMS.
+
+    The models are fitted on the GCPs not flagged in ``is_check``; the
+    check points are only measured. Leave-one-out runs on the fitting GCPs.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) array_like
+        All points (src -> dst).
+    is_check : (n,) array_like of bool or None
+        True for check points (not used to fit). None: no check points.
+    models : sequence of (label, kind, order)
+        Default: :data:`GEOREFERENCER_MODELS`, QGIS's seven choices.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Index: the labels. Columns ``parameters``, ``min GCPs``,
+        ``fitting RMS (px)``, ``leave-one-out RMS (px)`` and, with check
+        points, ``check RMS (px)``. A model with too few GCPs for leave-one-out
+        gets NaN there.
+
+    Raises
+    ------
+    ValueError
+        If the points are malformed, ``is_check`` does not hold one flag per
+        point, or a model cannot be fitted (too few or degenerate GCPs).
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5]], dtype=float)
+    >>> table = compare_models(src, src * 2, models=[("helmert", "helmert", None)])
+    >>> table.columns.tolist()
+    ['parameters', 'min GCPs', 'fitting RMS (px)', 'leave-one-out RMS (px)']
+    """
+    import pandas as pd
+
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
+    if len(src) != len(dst):
+        raise ValueError(f"src and dst must hold the same points, got {len(src)} and {len(dst)}")
+    check = np.zeros(len(src), bool) if is_check is None else _as_flags(is_check, "is_check")
+    if check.shape != (len(src),):
+        raise ValueError(f"is_check needs one flag per point ({len(src)}), got shape {check.shape}")
+    fit_src, fit_dst = src[~check], dst[~check]
+    rows = {}
+    for label, kind, order in models:
+        model = fit_transform(fit_src, fit_dst, kind, order)
+        row = {"parameters": model.n_parameters, "min GCPs": min_gcps(kind, order),
+               "fitting RMS (px)": model.rms(fit_src, fit_dst)}
+        if len(fit_src) > min_gcps(kind, order):
+            loo = transform_leave_one_out(fit_src, fit_dst, kind, order)
+            row["leave-one-out RMS (px)"] = float(np.sqrt(np.mean(loo**2)))
+        else:
+            row["leave-one-out RMS (px)"] = np.nan
+        if check.any():
+            row["check RMS (px)"] = model.rms(src[check], dst[check])
+        rows[label] = row
+    return pd.DataFrame.from_dict(rows, orient="index")

@@ -358,8 +358,10 @@ def overlap(raster_a, raster_b):
         If the CRSs differ or the rasters do not overlap.
     """
     if raster_a.crs != raster_b.crs:
-        raise ValueError(f"the rasters are in different CRSs ({raster_a.crs} and {raster_b.crs}); "
-                         "reproject one first")
+        raise ValueError(f"the rasters are in different CRSs ({raster_a.crs or 'no CRS'} and "
+                         f"{raster_b.crs or 'no CRS'}); pairing them pixel by pixel would mix two "
+                         "datums or projections: reproject one first with "
+                         "rsgeo.georef.reproject(raster, dst_crs)")
     west_a, south_a, east_a, north_a = raster_a.bounds
     west_b, south_b, east_b, north_b = raster_b.bounds
     west, east = max(west_a, west_b), min(east_a, east_b)

@@ -31,14 +31,21 @@ machine code is kept between sessions; no ``fastmath``, so the floating-point
 operations and their order stay GDAL's) and share the output rows among
 ``num_threads`` threads (1 by default; the result does not depend on it).
 
-GDAL widens the kernels when it downsamples (output pixels larger than 1/0.95
-input pixels); these are the plain 2 x 2 and 4 x 4 kernels, which GDAL uses when
-the scale is 0.95 or more. So "bit for bit" holds under these conditions only:
-an integer image (float32 outputs agree within one unit in the last place), a
-scale of 0.95 or more (upsampling or about the same scale), a destination nodata
-(gdalwarp's ``-dstnodata``), float64 arithmetic, and GDAL's exact transformer
-(``-et 0``; its default approximate transformer moves sample positions of
-non-linear mappings by up to 0.125 pixel).
+When it downsamples (output pixels larger than 1/0.95 input pixels), GDAL
+widens bilinear and cubic over 1/scale source pixels (its ``GWKResample``):
+``interpolate(..., scale=(xscale, yscale))`` does the same, with GDAL's
+taps, weights, order of sums and normalisation, and :func:`warp` computes the
+scale from the grids as gdalwarp does (:func:`grid_scale`). Without a nodata
+value (``nodata=None``) the output is gdalwarp's without ``-dstnodata``.
+So "bit for bit" holds for: an integer image (float32 outputs agree within
+one unit in the last place), with or without nodata, at any scale given the
+same XSCALE/YSCALE, and with gdalwarp's own scale when the output grid does
+not hang far over the source's edge (gdalwarp then splits the grid into
+chunks, each with its own scale); float64 arithmetic; and GDAL's exact
+transformer (``-et 0``; its default approximate transformer moves sample
+positions of non-linear mappings by up to 0.125 pixel). The GDAL is the one
+in the pinned rasterio wheels (3.10); GDAL 3.11 changes the normalisation
+without nodata and 3.13 keeps the 4-sample formulas down to scale 0.5.
 
 :func:`warp` refuses the two classic silent mistakes: a mapping in the wrong
 direction (image -> map, e.g. a raster's own geotransform instead of its
@@ -62,12 +69,15 @@ from numba import njit, prange  # noqa: E402
 from ._checks import as_image, check_choice
 
 __all__ = [
-    "METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
+    "METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
     "check_num_threads", "check_nodata", "check_bands_first", "check_shape", "grid_positions",
-    "warp",
+    "warp", "check_scale", "grid_scale", "check_resolution", "suggested_grid",
 ]
 
 METHODS = ("nearest", "bilinear", "cubic")
+# warp also averages: each output cell is the area-weighted mean of the source
+# pixels it covers (GDAL's "average"), which needs the cell's corners, not a point
+WARP_METHODS = METHODS + ("average",)
 
 # A margin GDAL adds before truncating a position to a pixel index, so that a
 # coordinate computed as 9.999999999999998 for 10 lands on pixel 10.
@@ -218,7 +228,7 @@ def bilinear_weights(t):
     return np.stack([1.0 - t, t])
 
 
-def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1):
+def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, scale=1.0):
     """Values of an image at continuous (col, row) positions, by GDAL's rules.
 
     Parameters
@@ -230,12 +240,22 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1):
         the image's top-left corner.
     method : {"nearest", "bilinear", "cubic"}
         Interpolator (lecture, slide "Reamostragem").
-    nodata : int or float
-        Value given to positions outside the image; must fit the dtype.
+    nodata : int or float or None
+        Value given to positions outside the image; must fit the dtype. None:
+        gdalwarp without a destination nodata (``-dstnodata``), as for a
+        source without nodata: outside is 0 and valid pixels equal to 0 stay
+        0 (no AvoidNoData nudge).
     num_threads : int
         Threads that share the rows of positions (the last axis of ``cols`` is
         a row); 1 by default, for reproducible timings. The result does not
         depend on it.
+    scale : float or (float, float)
+        GDAL's XSCALE and YSCALE warp options: output pixels per source pixel
+        along rows and columns, below 1 when downsampling. When either is
+        below 0.95, bilinear and cubic are widened over 1/scale source pixels
+        as GDAL's ``GWKResample`` does (bit for bit with GDAL given the same
+        XSCALE/YSCALE and a destination nodata); 1 by default (the plain
+        2 x 2 and 4 x 4 kernels). Nearest ignores it.
 
     Returns
     -------
@@ -248,11 +268,12 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1):
         If the image is not 2-D or 3-D (or looks bands last, (rows, cols, 3)),
         the method is unknown, cols and rows differ in shape or hold NaN or
         infinity, nodata does not fit the dtype, or num_threads is not a whole
-        number from 1 to the number of threads Numba may use.
+        number from 1 to the number of threads Numba may use, or scale is not
+        one or two numbers above 0.
 
     References
     ----------
-    GDAL, ``alg/gdalwarpkernel.cpp``: its nearest-neighbour kernels,
+    GDAL, ``alg/gdalwarpkernel.cpp``: its nearest-neighbour kernels, ``GWKResample``,
     ``GWKBilinearResample4Sample`` and ``GWKCubicResampleNoMasks4SampleT``.
 
     Keys, R. G. (1981), "Cubic convolution interpolation for digital image
@@ -272,12 +293,13 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1):
     num_threads = check_num_threads(num_threads)
     cols, rows = _check_positions(cols, rows)
     nodata = check_nodata(nodata, image.dtype)
+    scale = check_scale(scale)
 
     shape = (image.shape[0],) + cols.shape if image.ndim == 3 else cols.shape
     # rows of positions for the threads: the last axis, or blocks of a long 1-D list
     row_length = cols.shape[-1] if cols.ndim >= 2 else min(cols.size, _BLOCK)
     out, _ = _resample(image, method, nodata, num_threads, cols.ravel(), rows.ravel(),
-                       _NO_AFFINE, cols.size, row_length)
+                       _NO_AFFINE, cols.size, row_length, scale)
     return out.reshape(shape)
 
 
@@ -342,7 +364,8 @@ def check_num_threads(num_threads):
     return int(num_threads)
 
 
-def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, row_length):
+def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, row_length,
+              scale=(1.0, 1.0)):
     """Run one method's kernel over ``size`` output pixels; return (out, pixels inside).
 
     ``out`` is (bands, size) in ``image``'s dtype. Positions come from the
@@ -357,6 +380,10 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
     out = np.empty((bands.shape[0], size), dtype=work)
     if size == 0:
         return out.astype(dtype), 0
+    # no nodata (gdalwarp without -dstnodata): outside is 0 and no AvoidNoData nudge,
+    # which comparing with NaN (never equal) turns off
+    avoid = nodata is not None
+    nodata = nodata if avoid else 0
     fill = np.array([nodata], dtype=work)
     if work.kind in "ui":
         info = np.iinfo(work)
@@ -367,16 +394,73 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
         step = np.array([np.nextafter(work.type(nodata), work.type(np.inf))], dtype=work)
         low, high = -np.inf, np.inf
     n_rows = -(-size // row_length)
-    kernel = {"nearest": _nearest_loop, "bilinear": _bilinear_loop, "cubic": _cubic_loop}[method]
+    kernel = {"nearest": _nearest_loop, "bilinear": _bilinear_loop, "cubic": _cubic_loop,
+              "average": None}[method]
+    compare = float(nodata) if avoid else np.nan
+    xscale, yscale = scale
+    widened = method != "nearest" and not (xscale >= 0.95 and yscale >= 0.95)
     previous = numba.get_num_threads()
     numba.set_num_threads(num_threads)
     try:
-        inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows), to_source,
-                        n_rows, row_length, out, fill, step, float(nodata), work.kind in "ui",
-                        low, high)
+        if method == "average":
+            margins = [2 * max(1, int(np.ceil(1.0 / value))) for value in scale]
+            inside = _average_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
+                                   to_source, n_rows, row_length, out, fill, step, compare,
+                                   work.kind in "ui", low, high, margins[0], margins[1])
+        elif widened:
+            inside = _widened_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
+                                   to_source, n_rows, row_length, out, fill, step, compare,
+                                   work.kind in "ui", low, high, _RADIUS[method],
+                                   float(xscale), float(yscale))
+        else:
+            inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
+                            to_source, n_rows, row_length, out, fill, step, compare,
+                            work.kind in "ui", low, high)
     finally:
         numba.set_num_threads(previous)
     return (out if work == dtype else out.astype(dtype)), inside
+
+
+def check_scale(scale):
+    """Return ``scale`` as two positive floats (xscale, yscale), else raise ValueError.
+
+    Parameters
+    ----------
+    scale : float or (float, float)
+        GDAL's XSCALE and YSCALE: output pixels per source pixel along the
+        rows and the columns (below 1 when downsampling). One number is used
+        for both.
+
+    Returns
+    -------
+    (float, float)
+
+    Raises
+    ------
+    ValueError
+        If ``scale`` is not one or two finite numbers above zero.
+
+    Examples
+    --------
+    >>> check_scale(0.125)
+    (0.125, 0.125)
+    >>> check_scale((0.5, 0))
+    Traceback (most recent call last):
+    ...
+    ValueError: scale must be one or two finite numbers above 0 (output pixels per source pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), got (0.5, 0)
+    """
+    message = ("scale must be one or two finite numbers above 0 (output pixels per source "
+               "pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), "
+               f"got {scale!r}")
+    try:
+        values = np.asarray(scale, dtype=np.float64).ravel()
+    except (TypeError, ValueError):
+        raise ValueError(message) from None
+    if values.size == 1:
+        values = np.repeat(values, 2)
+    if values.size != 2 or not (np.isfinite(values).all() and (values > 0).all()):
+        raise ValueError(message)
+    return float(values[0]), float(values[1])
 
 
 def check_nodata(nodata, dtype):
@@ -410,6 +494,8 @@ def check_nodata(nodata, dtype):
     ...
     ValueError: nodata=-1 does not fit dtype uint8 (needs an integer in [0, 255])
     """
+    if nodata is None:
+        return None
     dtype = np.dtype(dtype)
     if dtype.kind in "ui":
         info = np.iinfo(dtype)
@@ -677,6 +763,210 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
     return landed.sum()
 
 
+# GDAL's filter radius of each method (anGWKFilterRadius), in source pixels at scale 1
+_RADIUS = {"nearest": 0, "bilinear": 1, "cubic": 2}
+
+
+@njit(cache=True, inline="always")
+def _filter_weight(x, radius):
+    """GDAL's GWKBilinear (radius 1) or CubicKernel (radius 2, Keys with a = -0.5) at x."""
+    ax = abs(x)
+    if radius == 1:
+        return 1.0 - ax if ax <= 1.0 else 0.0
+    if ax <= 1.0:
+        return x * x * (1.5 * ax - 2.5) + 1.0
+    if ax <= 2.0:
+        return x * x * (-0.5 * ax + 2.5) - 4.0 * ax + 2.0
+    return 0.0
+
+
+@njit(cache=True, parallel=True)
+def _widened_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+                  is_int, low, high, radius, xscale, yscale):
+    """Bilinear or cubic widened by 1/scale when downsampling: GDAL's GWKResample.
+
+    For each output pixel: find its position (col, row) in the source; if it
+    is outside the image, write nodata. Otherwise take the pixel left of and
+    above the position (floor of col - 0.5, row - 0.5) and the taps from
+    ``first`` to ``n`` around it along each axis, n = ceil(radius / scale)
+    (the kernel stretched over 1/scale source pixels; the taps that fall off
+    the image are dropped). Each tap weighs K((i - dx) * scale), with no factor
+    of scale; each row's taps are summed left to right, weighted by its own
+    K((j - dy) * scale) and added top to bottom, with the sum of the weights
+    alongside. The sum is divided by the weights' sum unless that is within
+    1e-5 of 1; below 1e-6 the pixel is left at nodata. Round and store.
+    Returns the number of output pixels that fell inside the source.
+    """
+    n_bands, height, width = bands.shape
+    size = out.shape[1]
+    x_below_1 = xscale < 1.0
+    y_below_1 = yscale < 1.0
+    x_radius = int(np.ceil(radius / xscale)) if x_below_1 else radius
+    y_radius = int(np.ceil(radius / yscale)) if y_below_1 else radius
+    # the window's first tap depends on the parity of the radius (GDAL's nFiltInit)
+    x_first = ((radius + 1) % 2) - x_radius
+    y_first = ((radius + 1) % 2) - y_radius
+    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
+    for i in prange(n_rows):
+        landed_in_row = 0
+        weights_x = np.empty(2 * x_radius + 2)
+        for j in range(row_length):
+            k = i * row_length + j
+            if k >= size:
+                break
+            col, row = _source_position(k, i, j, cols, rows, to_source)
+            if not _is_inside(col, row, width, height):
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
+            landed_in_row += 1
+            left = int(np.floor(col - 0.5))
+            top = int(np.floor(row - 0.5))
+            dx = col - 0.5 - left
+            dy = row - 0.5 - top
+            i_min = max(x_first, -left)
+            i_max = min(x_radius, width - left - 1)
+            j_min = max(y_first, -top)
+            j_max = min(y_radius, height - top - 1)
+            for t in range(i_min, i_max + 1):
+                x = (t - dx) * xscale if x_below_1 else t - dx
+                weights_x[t - i_min] = _filter_weight(x, radius)
+            for band in range(n_bands):
+                total = 0.0
+                total_weight = 0.0
+                for tr in range(j_min, j_max + 1):
+                    y = (tr - dy) * yscale if y_below_1 else tr - dy
+                    weight_y = _filter_weight(y, radius)
+                    along = 0.0
+                    along_weight = 0.0
+                    for t in range(i_min, i_max + 1):
+                        weight_x = weights_x[t - i_min]
+                        along += _pixel(bands, band, top + tr, left + t) * weight_x
+                        along_weight += weight_x
+                    total += along * weight_y
+                    total_weight += along_weight * weight_y
+                if total_weight < 0.000001:
+                    out[_u(band), _u(k)] = fill[0]
+                    continue
+                if total_weight < 0.99999 or total_weight > 1.00001:
+                    total = total / total_weight
+                _store(out, band, k, total, step, nodata, is_int, low, high)
+        landed[i] = landed_in_row
+    return landed.sum()
+
+
+@njit(cache=True, inline="always")
+def _cell_span(low, high, size):
+    """GDAL's source pixels under a cell edge to edge: (first, stop, low, high), or first = -1.
+
+    The cell spans [low, high) along one axis (swapped if reversed); pixels
+    from floor(low) to ceil(high), within [0, size), a margin of 1e-10
+    against rounding; at least one pixel. first = -1 if the span misses.
+    """
+    if low > high:
+        low, high = high, low
+    if not (high > -1e-10 and low < size + 1e-10):
+        return -1, 0, low, high
+    first = int(max(np.floor(low + 1e-10), 0.0))
+    stop = int(min(np.ceil(high - 1e-10), float(size)))
+    if first == stop and stop < size:
+        stop += 1
+    return first, stop, low, high
+
+
+@njit(cache=True, inline="always")
+def _edge_weight(index, first, stop, low, high):
+    """GDAL's COMPUTE_WEIGHT along one axis: the part of pixel ``index`` inside the cell."""
+    if index == first:
+        return 1.0 if first + 1 == stop else 1.0 - (low - first)
+    if index + 1 == stop:
+        return 1.0 - (stop - high)
+    return 1.0
+
+
+@njit(cache=True, inline="always")
+def _corner_to_source(to_source, j, i):
+    """A cell corner (j, i) of the output grid in the source, in GDAL's two steps.
+
+    ``to_source`` holds two GDAL geotransforms (c, a, b, f, d, e): the output
+    grid's (pixel -> map) and the source's inverse (map -> pixel); each is
+    applied as GDALApplyGeoTransform does, c + x * a + y * b.
+    """
+    x = to_source[0] + j * to_source[1] + i * to_source[2]
+    y = to_source[3] + j * to_source[4] + i * to_source[5]
+    return (to_source[6] + x * to_source[7] + y * to_source[8],
+            to_source[9] + x * to_source[10] + y * to_source[11])
+
+
+@njit(cache=True, parallel=True)
+def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+                  is_int, low, high, x_margin, y_margin):
+    """Area-weighted average (GDAL's GWKAverageOrMode, "average"), cell by cell.
+
+    For each output cell: take its top-left and bottom-right corners to the
+    source (from ``to_source``, or from the arrays of corner positions, a
+    (n_rows + 1) x (row_length + 1) grid); a cell whose corners are more than
+    a margin (2 ceil(1/scale) pixels) outside the image gets nodata. The
+    source pixels between the corners each weigh the fraction of their
+    width and height inside the cell (1 inside, less on the cell's edges);
+    the mean is updated pixel by pixel, row by row, as GDAL's weighted
+    incremental mean: total += w; mean += (w / total) * (v - mean). Round
+    and store; a cell with no weight gets nodata.
+    Returns the number of output cells that were averaged.
+    """
+    n_bands, height, width = bands.shape
+    size = out.shape[1]
+    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
+    for i in prange(n_rows):
+        landed_in_row = 0
+        for j in range(row_length):
+            k = i * row_length + j
+            if k >= size:
+                break
+            if to_source.size == 0:
+                corner = i * (row_length + 1) + j
+                x1, y1 = cols[_u(corner)], rows[_u(corner)]
+                x2, y2 = cols[_u(corner + row_length + 2)], rows[_u(corner + row_length + 2)]
+            else:
+                x1, y1 = _corner_to_source(to_source, float(j), float(i))
+                x2, y2 = _corner_to_source(to_source, j + 1.0, i + 1.0)
+            near = (x1 >= -x_margin and x2 >= -x_margin and y1 >= -y_margin
+                    and y2 >= -y_margin and x1 - width <= x_margin and x2 - width <= x_margin
+                    and y1 - height <= y_margin and y2 - height <= y_margin)
+            first_x, stop_x, x_min, x_max = _cell_span(x1, x2, width)
+            first_y, stop_y, y_min, y_max = _cell_span(y1, y2, height)
+            if not near or first_x < 0 or first_y < 0:
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
+            found = False
+            for band in range(n_bands):
+                total = 0.0
+                mean = 0.0
+                for r in range(first_y, stop_y):
+                    weight_y = _edge_weight(r, first_y, stop_y, y_min, y_max)
+                    for c in range(first_x, stop_x):
+                        if c == first_x:
+                            weight = (weight_y if first_x + 1 == stop_x
+                                      else weight_y * (1.0 - (x_min - first_x)))
+                        elif c + 1 == stop_x:
+                            weight = weight_y * (1.0 - (stop_x - x_max))
+                        else:
+                            weight = weight_y
+                        if weight > 0.0:
+                            total += weight
+                            mean += (weight / total) * (_pixel(bands, band, r, c) - mean)
+                if total > 0.0:
+                    found = True
+                    _store(out, band, k, mean, step, nodata, is_int, low, high)
+                else:
+                    out[_u(band), _u(k)] = fill[0]
+            if found:
+                landed_in_row += 1
+        landed[i] = landed_in_row
+    return landed.sum()
+
+
 def check_bands_first(image, name="image"):
     """Raise ValueError if a 3-D image looks bands-last (rows, cols, 3 or 4).
 
@@ -806,7 +1096,7 @@ def grid_positions(shape, transform=None, first_row=0):
 
 
 def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
-         num_threads=1):
+         num_threads=1, scale=None):
     """The corrected image: every output cell filled from where ``mapping`` sends it.
 
     This is the lecture's "construir uma nova imagem corrigida": the output grid
@@ -830,15 +1120,26 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     transform : affine.Affine, optional
         Output grid geotransform; if omitted, map coordinates are the output's
         own pixel coordinates.
-    method : {"nearest", "bilinear", "cubic"}
-    nodata : number
-        Value for cells whose source position is outside the image.
+    method : {"nearest", "bilinear", "cubic", "average"}
+        "average" (GDAL's, the method to downsample with): each cell is the
+        mean of the source pixels it covers, each weighted by the part of it
+        inside the cell (the cell's corners taken to the source).
+    nodata : number or None
+        Value for cells whose source position is outside the image; None for
+        gdalwarp's behaviour without a destination nodata (see :func:`interpolate`).
     strip_rows : int
         Rows per strip, when ``mapping`` is a callable (an affine map is
         evaluated pixel by pixel in the kernel, with no strips).
     num_threads : int
         Threads that share the output rows; 1 by default, for reproducible
         timings. The result does not depend on it.
+    scale : float or (float, float), optional
+        GDAL's XSCALE, YSCALE (see :func:`interpolate`). If omitted, computed
+        from the grids as gdalwarp does for one chunk: output columns (rows)
+        over the width (height) in source pixels of the bounding box of where
+        the output grid's edges fall in the source (:func:`grid_scale`).
+        gdalwarp splits a grid that hangs far over the source's edge into
+        chunks with their own scales; rsgeo uses one.
 
     Returns
     -------
@@ -867,19 +1168,24 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     array([1, 2, 3, 0], dtype=uint8)
     """
     image = check_bands_first(as_image(image))
-    check_choice(method, "method", METHODS)
+    check_choice(method, "method", WARP_METHODS)
     nodata = check_nodata(nodata, image.dtype)
     num_threads = check_num_threads(num_threads)
     out_rows, out_cols = check_shape(shape)
+    to_map = transform if transform is not None else affine.Affine.identity()
+    scale = (check_scale(scale) if scale is not None
+             else grid_scale(mapping, (out_rows, out_cols), to_map, image.shape[-2:]))
     height, width = image.shape[-2:]
     bands = image.shape[0] if image.ndim == 3 else 1
     out = np.empty((bands, out_rows, out_cols), dtype=image.dtype)
-    to_map = transform if transform is not None else affine.Affine.identity()
     if isinstance(mapping, affine.Affine):
         # an affine map: each output pixel's source position is computed in the kernel
         to_source = np.array((mapping @ to_map)[:6], dtype=np.float64)
+        # average takes cell corners through the two geotransforms, as GDAL does
+        two_steps = np.array(to_map.to_gdal() + mapping.to_gdal(), dtype=np.float64)
         flat, landed = _resample(image, method, nodata, num_threads, _NO_POSITIONS,
-                                 _NO_POSITIONS, to_source, out_rows * out_cols, out_cols)
+                                 _NO_POSITIONS, two_steps if method == "average" else to_source,
+                                 out_rows * out_cols, out_cols, scale)
         out = flat.reshape(out.shape)
         if not landed:
             a, b, c, d, e, f = to_source
@@ -891,13 +1197,20 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         spans = []
         for start in range(0, out_rows, strip_rows):
             stop = min(start + strip_rows, out_rows)
-            x, y = grid_positions((stop - start, out_cols), to_map, first_row=start)
+            if method == "average":
+                # the cells' corners: one more row and column than the cells
+                corner_cols, corner_rows = np.meshgrid(np.arange(out_cols + 1.0),
+                                                       np.arange(start, stop + 1.0))
+                x, y = to_map @ (corner_cols, corner_rows)
+            else:
+                x, y = grid_positions((stop - start, out_cols), to_map, first_row=start)
             source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
             if source.shape != (x.size, 2):
                 raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")
             source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
             strip, inside = _resample(image, method, nodata, num_threads, source_cols,
-                                      source_rows, _NO_AFFINE, x.size, out_cols)
+                                      source_rows, _NO_AFFINE, (stop - start) * out_cols,
+                                      out_cols, scale)
             out[:, start:stop, :] = strip.reshape(bands, stop - start, out_cols)
             if not landed:
                 spans.append((source_cols.min(), source_cols.max(),
@@ -924,3 +1237,222 @@ def _nothing_lands_message(mapping, spans, width, height):
     return ("no output cell lands inside the source image: is your mapping map → image "
             f"(u = f(x, y))? {fix}; also check that the output grid (shape, transform) "
             f"covers the source's ground ({where})")
+
+
+def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
+    """GDAL's XSCALE, YSCALE for warping onto a grid: output pixels per source pixel.
+
+    As ``GDALWarpOperation`` computes them for one chunk: the output grid's
+    edges (``samples`` points on each side, at pixel corners) are taken to the
+    source; the scale is the output's columns (rows) over the width (height)
+    of their bounding box in source pixels (cut at the image's right or
+    bottom edge when its shape is given, GDAL's ``dfSrcXSizeRaw``). A scale
+    below 1 whose reciprocal is within 0.05 of a whole number n becomes
+    exactly 1/n, as in ``GDALWarpKernel::PerformWarp``.
+
+    Parameters
+    ----------
+    mapping : callable or affine.Affine
+        Map (x, y) -> source (col, row), as in :func:`warp`.
+    shape : (rows, cols)
+        Output grid size.
+    transform : affine.Affine, optional
+        Output grid geotransform (identity if omitted).
+    src_shape : (rows, cols), optional
+        Source image size, to cut the window to; not cut if omitted.
+    samples : int
+        Points per edge.
+
+    Returns
+    -------
+    (float, float)
+        (xscale, yscale), below 1 when the output pixels are larger.
+
+    Raises
+    ------
+    ValueError
+        If ``shape`` is not two positive integers, or ``mapping`` does not
+        return an (n, 2) array of finite positions. (A grid that covers no
+        source pixel along an axis gets 1 there: nothing to widen.)
+
+    Examples
+    --------
+    >>> grid_scale(affine.Affine.scale(8.0), (100, 50))
+    (0.125, 0.125)
+    """
+    rows, cols = check_shape(shape)
+    to_map = transform if transform is not None else affine.Affine.identity()
+    t = np.linspace(0.0, 1.0, samples)
+    px = np.concatenate([t * cols, t * cols, np.zeros(samples), np.full(samples, float(cols))])
+    py = np.concatenate([np.zeros(samples), np.full(samples, float(rows)), t * rows, t * rows])
+    x, y = to_map @ (px, py)
+    if isinstance(mapping, affine.Affine):
+        source_cols, source_rows = mapping @ (x, y)
+    else:
+        source = np.asarray(mapping(np.column_stack([x, y])), dtype=np.float64)
+        if source.shape != (x.size, 2):
+            raise ValueError("mapping must return an (n, 2) array of (col, row), got shape "
+                             f"{source.shape}")
+        source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
+    spans = [source_cols.max() - source_cols.min(), source_rows.max() - source_rows.min()]
+    if src_shape is not None:
+        # GDAL's dfSrcXSizeRaw: the span, at most from the clamped start to the image's edge
+        height, width = check_shape(src_shape, "src_shape")
+        for axis, (low, size) in enumerate([(source_cols.min(), width),
+                                            (source_rows.min(), height)]):
+            spans[axis] = max(0.0, min(float(size - int(max(0.0, low))), spans[axis]))
+    scales = []
+    for n_out, span in ((cols, spans[0]), (rows, spans[1])):
+        if not span > 0:
+            # no source pixel under the grid: GDAL's scale is infinite; nothing to widen
+            scales.append(1.0)
+            continue
+        scale = n_out / span
+        if scale < 1.0:
+            reciprocal = 1.0 / scale
+            whole = int(reciprocal + 0.5)
+            if abs(reciprocal - whole) < 0.05:
+                scale = 1.0 / whole
+        scales.append(float(scale))
+    return scales[0], scales[1]
+
+
+def check_resolution(resolution):
+    """Return a pixel size as two positive floats (xres, yres), else raise ValueError.
+
+    Parameters
+    ----------
+    resolution : float or (float, float)
+        Output pixel size in map units (gdalwarp's ``-tr``); one number for both.
+
+    Returns
+    -------
+    (float, float)
+
+    Raises
+    ------
+    ValueError
+        If ``resolution`` is not one or two finite numbers above 0.
+
+    Examples
+    --------
+    >>> check_resolution(20)
+    (20.0, 20.0)
+    """
+    message = ("resolution must be one or two finite numbers above 0 (the output pixel size "
+               f"in map units, xres and yres, e.g. 20 for 20 m pixels), got {resolution!r}")
+    try:
+        values = np.asarray(resolution, dtype=np.float64).ravel()
+    except (TypeError, ValueError):
+        raise ValueError(message) from None
+    if values.size == 1:
+        values = np.repeat(values, 2)
+    if values.size != 2 or not (np.isfinite(values).all() and (values > 0).all()):
+        raise ValueError(message)
+    return float(values[0]), float(values[1])
+
+
+def suggested_grid(src_shape, mapping, resolution=None, tap=False):
+    """The output grid gdalwarp would choose: its transform and shape.
+
+    GDAL's ``GDALSuggestedWarpOutput2``: the source's edges (at least 20
+    points a side, at pixel corners) are taken to the map; their bounding box
+    is the extent, and the pixel size, the same in x and y, keeps the number
+    of pixels along the diagonal from the top-left to the bottom-right corner
+    of the source. Columns and rows are the extent over the pixel size,
+    rounded; the extent's right and bottom edges are then moved to match.
+    With ``resolution`` (gdalwarp's ``-tr``) that extent is cut into pixels
+    of that size, rounded to whole pixels (``int((extent + res / 2) / res)``);
+    with ``tap`` (``-tap``) its edges first move outwards to multiples of
+    the resolution, so that grids of several scenes line up pixel for pixel.
+
+    Parameters
+    ----------
+    src_shape : (rows, cols)
+        Source image size.
+    mapping : affine.Affine or callable
+        Source pixel (col, row) -> map (x, y): the raster's geotransform, or
+        a model fitted image -> map, called with an (n, 2) array.
+    resolution : float or (float, float), optional
+        Output pixel size (xres, yres) in map units, both positive.
+    tap : bool
+        Target-aligned pixels: the grid's edges on multiples of ``resolution``.
+
+    Returns
+    -------
+    transform : affine.Affine
+        North-up output geotransform (pixel corner -> map).
+    shape : (int, int)
+        Output (rows, cols).
+
+    Raises
+    ------
+    ValueError
+        If ``src_shape`` is not two positive integers, ``resolution`` is not
+        positive, ``tap`` is asked without a resolution (gdalwarp's rule), or
+        ``mapping`` does not return an (n, 2) array of finite points or maps
+        the source onto a line.
+
+    References
+    ----------
+    GDAL, ``alg/gdaltransformer.cpp``: ``GDALSuggestedWarpOutput2``;
+    ``apps/gdalwarp_lib.cpp``: ``-tr`` and ``-tap``.
+
+    Examples
+    --------
+    >>> transform, shape = suggested_grid((2810, 2954), affine.Affine(2.5, 0, 770595, 0, -2.5,
+    ...                                                                7370115))
+    >>> transform.a, shape
+    (2.5, (2810, 2954))
+    >>> suggested_grid((2810, 2954), affine.Affine(2.5, 0, 770595, 0, -2.5, 7370115),
+    ...                resolution=20, tap=True)[1]
+    (352, 370)
+    """
+    height, width = check_shape(src_shape, "src_shape")
+    if resolution is not None:
+        resolution = check_resolution(resolution)
+    elif tap:
+        raise ValueError("tap=True needs a resolution: target-aligned pixels are aligned on "
+                         "multiples of the pixel size (gdalwarp: -tap needs -tr)")
+    steps = min(max(int(min(width, height) / 50 + 0.5), 20), 100)
+    ratio = np.array([i / steps for i in range(steps)] + [1.0])
+    # top, bottom, left, right: the last point is the bottom-right corner
+    cols = np.concatenate([ratio * width, ratio * width, np.zeros(steps + 1),
+                           np.full(steps + 1, float(width))])
+    rows = np.concatenate([np.zeros(steps + 1), np.full(steps + 1, float(height)),
+                           ratio * height, ratio * height])
+    if isinstance(mapping, affine.Affine):
+        # GDALApplyGeoTransform's order of operations: c + col * a + row * b
+        a, b, c, d, e, f = mapping[:6]
+        x, y = c + cols * a + rows * b, f + cols * d + rows * e
+    else:
+        points = np.asarray(mapping(np.column_stack([cols, rows])), dtype=np.float64)
+        if points.shape != (cols.size, 2):
+            raise ValueError("mapping must return an (n, 2) array of map (x, y), got shape "
+                             f"{points.shape}")
+        x, y = _check_positions(points[:, 0], points[:, 1])
+    min_x, max_x, min_y, max_y = x.min(), x.max(), y.min(), y.max()
+    delta_x, delta_y = x[-1] - x[0], y[-1] - y[0]
+    if delta_x == 0.0 or delta_y == 0.0:
+        delta_x, delta_y = max_x - min_x, max_y - min_y
+    size = np.sqrt(delta_x * delta_x + delta_y * delta_y) / np.sqrt(
+        float(width) * width + float(height) * height)
+    if not (size > 0 and max_x > min_x and max_y > min_y):
+        raise ValueError("mapping takes the source onto a point or a line; it must go from "
+                         "source pixel (col, row) to map (x, y), e.g. raster.transform")
+    n_cols = int((max_x - min_x) / size + 0.5)
+    n_rows = int((max_y - min_y) / size + 0.5)
+    max_x = min_x + n_cols * size
+    min_y = max_y - n_rows * size
+    if resolution is None:
+        return affine.Affine(size, 0.0, min_x, 0.0, -size, max_y), (n_rows, n_cols)
+    x_res, y_res = resolution
+    if tap:
+        min_x = np.floor(min_x / x_res) * x_res
+        max_x = np.ceil(max_x / x_res) * x_res
+        min_y = np.floor(min_y / y_res) * y_res
+        max_y = np.ceil(max_y / y_res) * y_res
+    n_cols = int((max_x - min_x + x_res / 2.0) / x_res)
+    n_rows = int((abs(max_y - min_y) + y_res / 2.0) / y_res)
+    return (affine.Affine(x_res, 0.0, float(min_x), 0.0, -y_res, float(max_y)),
+            (n_rows, n_cols))

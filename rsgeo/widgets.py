@@ -19,12 +19,12 @@ import weakref
 import numpy as np
 
 from . import distortion, gcp, matching, radiometry
-from ._checks import check_choice
+from ._checks import check_choice, check_range
 from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
 
 __all__ = [
     "DPI", "render_png", "distortion_explorer", "gcp_explorer", "regression_stretch",
-    "ga_evolution", "draw_evolution_frame",
+    "ga_evolution", "draw_evolution_frame", "model_explorer",
 ]
 
 #: Resolution of a widget's PNG frames (dots per inch): the figures are 9 to 13 inches wide,
@@ -484,3 +484,92 @@ def _draw_evolution_axes(figure, reference, adjustment, truth, last):
     right.legend(loc="lower right")
     return {"reference": reference, "adjustment": adjustment, "truth": truth, "last": last,
             "axes": (left, right), "shifted": shifted, "matches": matches, "curves": curves}
+
+
+def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
+    """Switch among QGIS's Georeferencer models and watch the deformation grid and residuals.
+
+    The blue grid is a regular map grid over the GCPs, drawn where the model
+    puts it in the image, its departure from the degree-1 polynomial (an
+    affine map) drawn ``exaggeration`` times larger: straight for linear,
+    Helmert and degree 1, bent for the others. The arrows are the GCPs'
+    residuals (model - measured), as long times the same factor; the title
+    gives the fitting and leave-one-out RMS. Every model and its leave-one-out
+    errors are computed once, when the widget is built.
+
+    Parameters
+    ----------
+    gcps : rsgeo.gcp.GCPSet
+        Its enabled GCPs are used (map -> image).
+    model : str
+        Label shown first, one of ``rsgeo.gcp.GEOREFERENCER_MODELS``' labels.
+    exaggeration : float
+        Initial factor for the grid's departure and the arrows (1 to 50).
+
+    Returns
+    -------
+    ipywidgets.VBox
+        With ``figure``, the matplotlib Figure it updates.
+
+    Raises
+    ------
+    ValueError
+        If ``model`` is not one of the labels, ``exaggeration`` is not in
+        [1, 50], or there are too few GCPs for one of the models.
+    """
+    import ipywidgets as widgets
+
+    labels = [label for label, _, _ in gcp.GEOREFERENCER_MODELS]
+    check_choice(model, "model", labels)
+    exaggeration = check_range(exaggeration, "exaggeration", low=1, high=50)
+    enabled = np.asarray(getattr(gcps, "enabled", np.ones(len(gcps), bool)), bool)
+    map_xy, image_xy = gcps.map_xy[enabled], gcps.image_xy[enabled]
+    low, high = map_xy.min(axis=0), map_xy.max(axis=0)
+    margin = 0.05 * (high - low)
+    xs = np.linspace(low[0] - margin[0], high[0] + margin[0], 9)
+    ys = np.linspace(low[1] - margin[1], high[1] + margin[1], 9)
+    fine_x = np.linspace(xs[0], xs[-1], 41)
+    fine_y = np.linspace(ys[0], ys[-1], 41)
+    lines = ([np.column_stack([np.full(41, x), fine_y]) for x in xs]
+             + [np.column_stack([fine_x, np.full(41, y)]) for y in ys])
+    points = np.vstack(lines)
+    affine = gcp.fit_transform(map_xy, image_xy, "polynomial", 1)
+    base = affine(points)
+    fitted = {}
+    for label, kind, order in gcp.GEOREFERENCER_MODELS:
+        fitted_model = gcp.fit_transform(map_xy, image_xy, kind, order)
+        loo = gcp.transform_leave_one_out(map_xy, image_xy, kind, order)
+        fitted[label] = (fitted_model.n_parameters, fitted_model(points) - base,
+                         fitted_model(map_xy) - image_xy,
+                         fitted_model.rms(map_xy, image_xy), float(np.sqrt(np.mean(loo**2))))
+
+    choice = widgets.Dropdown(options=labels, value=model, description="model")
+    factor = widgets.FloatSlider(value=exaggeration, min=1, max=50, step=1,
+                                 description="× drawn")
+    figure = _widget_figure((7.5, 7))
+    ax = figure.subplots()
+    grid_line, = ax.plot([], [], color="tab:blue", linewidth=0.8)
+    arrows = ax.quiver(image_xy[:, 0], image_xy[:, 1], np.zeros(len(image_xy)),
+                       np.zeros(len(image_xy)), color="tab:red", angles="xy",
+                       scale_units="xy", scale=1.0, width=0.005)
+    ax.scatter(image_xy[:, 0], image_xy[:, 1], s=12, color="black", zorder=3)
+    span = image_xy.max(axis=0) - image_xy.min(axis=0)
+    ax.set(xlim=(image_xy[:, 0].min() - 0.25 * span[0], image_xy[:, 0].max() + 0.25 * span[0]),
+           ylim=(image_xy[:, 1].max() + 0.25 * span[1], image_xy[:, 1].min() - 0.25 * span[1]),
+           xlabel="column (px)", ylabel="row (px)", aspect="equal")
+    sizes = [len(line) for line in lines]
+
+    def update():
+        n_parameters, departure, residual, rms, loo = fitted[choice.value]
+        k = float(factor.value)
+        drawn = base + k * departure
+        parts = np.split(drawn, np.cumsum(sizes)[:-1])
+        grid_line.set_data(*grid_path([(part[:, 0], part[:, 1]) for part in parts]))
+        arrows.set_UVC(residual[:, 0], residual[:, 1])
+        arrows.scale = 1.0 / k
+        ax.set_title(f"{choice.value} ({n_parameters} parameters), drawn ×{k:g}: fitting RMS "
+                     f"{rms:.2f} px, leave-one-out RMS {loo:.2f} px", y=1.0, fontsize=9)
+
+    output = widgets.Output()
+    box = widgets.VBox([widgets.HBox([choice, factor]), output])
+    return _live(box, output, figure, update, (choice, factor))

@@ -13,7 +13,8 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 import rasterio
 
-_RESAMPLING = {"nearest": "NearestNeighbour", "bilinear": "Bilinear", "cubic": "Cubic"}
+_RESAMPLING = {"nearest": "NearestNeighbour", "bilinear": "Bilinear", "cubic": "Cubic",
+              "average": "Average"}
 _GDAL_TYPES = {"uint8": "Byte", "uint16": "UInt16", "int16": "Int16", "int32": "Int32",
                "float32": "Float32", "float64": "Float64"}
 
@@ -31,33 +32,44 @@ def _write_source(folder, image):
     return path, bands.shape[0]
 
 
-def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodata, plain_kernels=False):
+def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodata,
+              plain_kernels=False, scale=None, block=256):
     """Warp ``image`` with GDAL; ``source_transformer_xml`` places the source on the map.
 
+    ``nodata``: the destination nodata, or None for none (gdalwarp without
+    ``-dstnodata``: the output starts at 0).
     ``plain_kernels``: set GDAL's XSCALE and YSCALE warp options to 1, so that it
     never widens its kernels (it otherwise does where the bounding box of a
     chunk's source window makes the scale look below 0.95).
+    ``scale``: (xscale, yscale) to force as XSCALE and YSCALE instead.
+    ``block``: the VRT's block size, GDAL's chunk of output.
     """
     dtype = _GDAL_TYPES[np.dtype(image.dtype).name]
     with tempfile.TemporaryDirectory() as folder:
         source, count = _write_source(folder, np.asarray(image))
+        band_nodata = f"<NoDataValue>{nodata}</NoDataValue>" if nodata is not None else ""
         bands = "".join(
             f'<VRTRasterBand dataType="{dtype}" band="{b}" subClass="VRTWarpedRasterBand">'
-            f"<NoDataValue>{nodata}</NoDataValue></VRTRasterBand>" for b in range(1, count + 1))
-        mapping = "".join(f'<BandMapping src="{b}" dst="{b}"><DstNoDataReal>{nodata}</DstNoDataReal>'
-                          f"<DstNoDataImag>0</DstNoDataImag></BandMapping>" for b in range(1, count + 1))
+            f"{band_nodata}</VRTRasterBand>" for b in range(1, count + 1))
+        dst_nodata = (f"<DstNoDataReal>{nodata}</DstNoDataReal><DstNoDataImag>0</DstNoDataImag>"
+                      if nodata is not None else "")
+        mapping = "".join(f'<BandMapping src="{b}" dst="{b}">{dst_nodata}</BandMapping>'
+                          for b in range(1, count + 1))
+        init = "NO_DATA" if nodata is not None else "0"
         inverse = ~dst_transform
-        scale_options = ('<Option name="XSCALE">1</Option><Option name="YSCALE">1</Option>'
-                         if plain_kernels else "")
+        if plain_kernels:
+            scale = (1, 1)
+        scale_options = (f'<Option name="XSCALE">{scale[0]!r}</Option>'
+                         f'<Option name="YSCALE">{scale[1]!r}</Option>' if scale is not None else "")
         xml = f"""<VRTDataset rasterXSize="{shape[1]}" rasterYSize="{shape[0]}" subClass="VRTWarpedDataset">
   <GeoTransform>{_geotransform(dst_transform)}</GeoTransform>
   {bands}
-  <BlockXSize>256</BlockXSize><BlockYSize>256</BlockYSize>
+  <BlockXSize>{block}</BlockXSize><BlockYSize>{block}</BlockYSize>
   <GDALWarpOptions>
     <WarpMemoryLimit>67108864</WarpMemoryLimit>
     <ResampleAlg>{_RESAMPLING[method]}</ResampleAlg>
     <WorkingDataType>{dtype}</WorkingDataType>
-    <Option name="INIT_DEST">NO_DATA</Option>{scale_options}
+    <Option name="INIT_DEST">{init}</Option>{scale_options}
     <SourceDataset relativeToVRT="0">{source}</SourceDataset>
     <Transformer><GenImgProjTransformer>
       {source_transformer_xml}
@@ -114,3 +126,49 @@ def gdal_map_to_image(image_xy, map_xy, order, dst_transform, shape, refine=None
                     "bilinear", -1e9, plain_kernels=True)
     inside = ((out[0] > 1) & (out[0] < width - 1) & (out[1] > 1) & (out[1] < height - 1))
     return np.where(inside, out[0], np.nan), np.where(inside, out[1], np.nan)
+
+
+def gdalwarp_reproject(image, src_transform, dst_transform, shape, method, nodata, crs="EPSG:29191",
+                       **warp_options):
+    """What gdalwarp itself gives: rasterio.warp.reproject, GDAL's chunked warp operation.
+
+    Unlike :func:`gdal_warp` (a VRTWarpedDataset, which computes the scale of
+    each chunk from its padded source window), this is the path of
+    ``gdalwarp``: the scale comes from the unpadded source window
+    (``dfSrcXSizeRaw``). Source and destination share one CRS, so the map is
+    affine and GDAL's approximate transformer is exact for it. ``nodata`` None:
+    no destination nodata, the output starts at 0. ``warp_options``, e.g.
+    ``XSCALE="0.5"``, are passed to GDAL as warp options.
+    """
+    from rasterio.warp import Resampling, reproject
+
+    image = np.asarray(image)
+    out = np.zeros(image.shape[:-2] + tuple(shape), dtype=image.dtype)
+    reproject(image, out, src_transform=src_transform, src_crs=crs, dst_transform=dst_transform,
+              dst_crs=crs, resampling=getattr(Resampling, method), src_nodata=None, tolerance=0,
+              dst_nodata=nodata, init_dest_nodata=True, **warp_options)
+    return out
+
+
+def gdal_suggested_grid(shape, transform=None, gcps=None, crs="EPSG:29191"):
+    """GDAL's GDALSuggestedWarpOutput2 for a source of ``shape`` (rows, cols).
+
+    The source is placed by its geotransform or by ``gcps`` ((col, row, x, y)
+    rows, for GDAL's GCP polynomial); a WarpedVRT into the same CRS with no
+    grid given takes GDAL's suggested transform and size.
+    """
+    from rasterio.control import GroundControlPoint
+    from rasterio.vrt import WarpedVRT
+
+    rows, cols = shape
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "source.tif")
+        options = dict(driver="GTiff", width=cols, height=rows, count=1, dtype="uint8", crs=crs)
+        if gcps is None:
+            options["transform"] = transform
+        with rasterio.open(path, "w", **options) as dataset:
+            if gcps is not None:
+                dataset.gcps = ([GroundControlPoint(row=r, col=c, x=x, y=y, z=0.0)
+                                 for c, r, x, y in gcps], rasterio.crs.CRS.from_user_input(crs))
+        with rasterio.open(path) as source, WarpedVRT(source, crs=source.crs) as vrt:
+            return vrt.transform, (vrt.height, vrt.width)

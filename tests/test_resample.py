@@ -324,3 +324,326 @@ def test_keys_weights_reproduce_quadratics_and_match_keys_closed_form():
     np.testing.assert_allclose(opencv.sum(axis=0), 1.0, atol=1e-12)
     np.testing.assert_allclose(keys_weights(0.5, a=-0.75), [-0.09375, 0.59375, 0.59375, -0.09375])
     assert np.abs((opencv * offsets).sum(axis=0) - t).max() > 0.01
+
+
+# -- gdalwarp's common cases: no nodata, downsampling ---------------------------
+
+from gdal_reference import gdalwarp_reproject  # noqa: E402
+from rsgeo.resample import check_scale, grid_scale  # noqa: E402
+
+
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("dtype", ["uint8", "int16", "float32"])
+def test_no_nodata_matches_gdal_without_dstnodata(method, dtype):
+    # gdalwarp without -dstnodata: outside is 0 and valid zeros stay 0 (no AvoidNoData)
+    image = noise((300, 400), dtype, seed=11)
+    dst_transform = (SOURCE_TRANSFORM @ affine.Affine.translation(-20.3, -15.7)
+                     @ affine.Affine.rotation(7) @ affine.Affine.scale(0.9))
+    shape = (380, 450)
+    expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape, method,
+                         None, plain_kernels=True)
+    x, y = grid_positions(shape, dst_transform)
+    cols, rows = ~SOURCE_TRANSFORM @ (x, y)
+    got = interpolate(image, cols, rows, method, nodata=None)
+    if dtype == "float32" and method != "nearest":
+        np.testing.assert_array_max_ulp(got, expected, maxulp=1)
+        assert np.count_nonzero(got != expected) < got.size / 2000
+    else:
+        assert np.count_nonzero(got != expected) == 0
+    inside = (cols >= 0) & (cols < 400) & (rows >= 0) & (rows < 300)
+    assert (got[~inside] == 0).all()
+
+
+def test_no_nodata_keeps_valid_zeros():
+    image = np.zeros((6, 6), dtype=np.uint8)
+    for method in METHODS:
+        assert interpolate(image, [3.0, 7.0], [3.0, 3.0], method, nodata=None).tolist() == [0, 0]
+    # with nodata=0 the valid zero moves to 1 (AvoidNoData): the difference is real
+    assert interpolate(image, [3.0], [3.0], "bilinear", nodata=0)[0] == 1
+
+
+@pytest.mark.parametrize("method", ["bilinear", "cubic"])
+@pytest.mark.parametrize("scale", [(0.23, 0.23), (0.37, 0.5), (0.125, 0.125), (0.6, 1.0)])
+@pytest.mark.parametrize("nodata", [0, None])
+@pytest.mark.parametrize("dtype", ["uint8", "int16", "float32"])
+def test_widened_kernels_match_gdal_with_forced_scale(method, scale, nodata, dtype):
+    # GDAL's XSCALE / YSCALE warp options force the scale; below 0.95 GDAL widens its
+    # bilinear and cubic kernels over 1/scale source pixels (GWKResample)
+    image = noise((300, 400), dtype, seed=12)
+    zoom = 0.8 / min(scale)
+    dst_transform = (SOURCE_TRANSFORM @ affine.Affine.translation(-20.3, -15.7)
+                     @ affine.Affine.rotation(7) @ affine.Affine.scale(zoom))
+    shape = (int(380 / zoom), int(450 / zoom))
+    expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape, method,
+                         nodata, scale=scale)
+    x, y = grid_positions(shape, dst_transform)
+    cols, rows = ~SOURCE_TRANSFORM @ (x, y)
+    got = interpolate(image, cols, rows, method, nodata=nodata, scale=scale)
+    assert np.count_nonzero(got != expected) == 0
+    # and the widening is not a no-op: the plain kernel differs
+    plain = interpolate(image, cols, rows, method, nodata=nodata)
+    assert np.count_nonzero(plain != expected) > got.size / 10
+
+
+DOWNSAMPLED_GRIDS = {
+    "whole source, 4 px": (affine.Affine(40.0, 0, 500_000.0, 0, -40.0, 7_400_000.0), (75, 100)),
+    "inside, 2.92 px": (affine.Affine(29.2, 0, 500_400.0, 0, -29.2, 7_399_600.0), (95, 119)),
+    "inside, 4 px": (affine.Affine(40.0, 0, 500_400.0, 0, -40.0, 7_399_600.0), (70, 87)),
+    "rotated": (SOURCE_TRANSFORM @ affine.Affine.translation(60.3, 15.7)
+                @ affine.Affine.rotation(7) @ affine.Affine.scale(4.3), (60, 70)),
+    "sheared": (SOURCE_TRANSFORM @ affine.Affine.translation(10, 12) @ affine.Affine.shear(5, 3)
+                @ affine.Affine.scale(3.1), (100, 120)),
+}
+
+
+@pytest.mark.parametrize("grid", DOWNSAMPLED_GRIDS)
+@pytest.mark.parametrize("method", METHODS)
+@pytest.mark.parametrize("nodata", [0, None])
+def test_warp_chooses_the_scale_as_gdalwarp_does(grid, method, nodata):
+    dst_transform, shape = DOWNSAMPLED_GRIDS[grid]
+    image = noise((300, 400), seed=13)
+    expected = gdalwarp_reproject(image, SOURCE_TRANSFORM, dst_transform, shape, method, nodata)
+    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method=method, nodata=nodata)
+    assert np.count_nonzero(got != expected) == 0
+    xscale, yscale = grid_scale(~SOURCE_TRANSFORM, shape, dst_transform, image.shape)
+    assert xscale < 0.95 and yscale < 0.95
+
+
+def test_grid_scale_follows_gdal_rules():
+    source = affine.Affine.identity()
+    # 120 output columns over 350.4 source columns: 1/2.92, too far from 1/3 to snap
+    assert grid_scale(source, (100, 120), affine.Affine.scale(2.92)) == (120 / 350.4, 100 / 292)
+    # within 0.05 of a whole reciprocal: exactly 1/3
+    assert grid_scale(source, (100, 120), affine.Affine.scale(2.97)) == (1 / 3, 1 / 3)
+    # cut at the image's right and bottom edges (GDAL's dfSrcXSizeRaw)
+    assert grid_scale(source, (10, 10), affine.Affine(8, 0, 40, 0, 8, 0), (80, 100)) == (
+        10 / 60, 1 / 8)
+    # a grid off the image: nothing to widen
+    assert grid_scale(source, (10, 10), affine.Affine.translation(500, 500), (80, 100)) == (
+        1.0, 1.0)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_the_hrc_scene_taken_to_the_ccd_grid_matches_gdalwarp(method):
+    # the real case: 2.5 m HRC onto the 20 m CCD grid of the same ground, gdalwarp's own scale
+    from rsgeo import data
+    hrc, ccd = data.load("cbers2b_hrc"), data.load("cbers2b_rgb342")
+    shape = ccd.array.shape[-2:]
+    expected = gdalwarp_reproject(hrc.array, hrc.transform, ccd.transform, shape, method, None)
+    got = warp(hrc.array, ~hrc.transform, shape, ccd.transform, method=method, nodata=None)
+    assert np.count_nonzero(got != expected) == 0
+    assert grid_scale(~hrc.transform, shape, ccd.transform, hrc.array.shape) == (0.125, 0.125)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.sampled_from(["bilinear", "cubic"]), st.floats(0.05, 0.94), st.floats(0.05, 1.5),
+       st.integers(0, 2**31 - 1))
+def test_widened_kernels_keep_constants(method, xscale, yscale, seed):
+    # the weights are renormalised, so a constant stays constant, at the edges too. (A ramp
+    # does not: GDAL's taps run from 1 - n (cubic) or -n (bilinear) to n, n = ceil(R / scale),
+    # which cuts a sliver off one side of the widened kernel.)
+    rng = np.random.default_rng(seed)
+    constant = np.full((80, 80), 7.0)
+    at_c, at_r = rng.uniform(0, 80, 50), rng.uniform(0, 80, 50)
+    np.testing.assert_allclose(
+        interpolate(constant, at_c, at_r, method, nodata=np.nan, scale=(xscale, yscale)), 7.0)
+
+
+@pytest.mark.parametrize("scale", [0, -0.5, (0.5, 0), np.nan, np.inf, (0.5, 0.5, 0.5), "half", None])
+def test_scale_must_be_positive(scale):
+    with pytest.raises(ValueError, match="scale must be one or two finite numbers above 0"):
+        interpolate(np.zeros((4, 4), dtype=np.uint8), [1.0], [1.0], "bilinear", scale=scale)
+    if scale is not None:
+        with pytest.raises(ValueError, match="scale must be one or two finite numbers above 0"):
+            warp(np.zeros((4, 4), dtype=np.uint8), affine.Affine.identity(), (4, 4), scale=scale)
+    assert check_scale(0.5) == (0.5, 0.5)
+
+
+# -- the output grid gdalwarp would choose ----------------------------------------
+
+from gdal_reference import gdal_suggested_grid  # noqa: E402
+from rsgeo.resample import suggested_grid  # noqa: E402
+
+
+@pytest.mark.parametrize("shape, transform", [
+    ((2810, 2954), affine.Affine(2.5, 0, 770595.0, 0, -2.5, 7370115.0)),
+    ((300, 400), affine.Affine(2.5, 0, 770595.0, 0, -2.5, 7370115.0) @ affine.Affine.rotation(7)),
+    ((351, 369), affine.Affine(20, 0, 770596.79, 0, -20, 7370112.81) @ affine.Affine.rotation(-13)
+     @ affine.Affine.scale(1.0, 1.3)),
+    ((57, 2000), affine.Affine(10, 2, 500_000.5, 1, -12, 7_400_000.25)),
+])
+def test_suggested_grid_equals_gdal_s_suggestion(shape, transform):
+    expected_transform, expected_shape = gdal_suggested_grid(shape, transform)
+    got_transform, got_shape = suggested_grid(shape, transform)
+    assert got_shape == expected_shape
+    assert tuple(got_transform)[:6] == tuple(expected_transform)[:6]
+
+
+def test_suggested_grid_of_a_gcp_model_is_gdal_s_within_rounding():
+    # GDAL fits its own first-order polynomial to the GCPs: the same plane, to rounding
+    transform = affine.Affine(20, 0, 770596.79, 0, -20, 7370112.81) @ affine.Affine.rotation(5)
+    rng = np.random.default_rng(2)
+    image_xy = rng.uniform(0, 350, (8, 2))
+    map_xy = np.column_stack(transform @ (image_xy[:, 0], image_xy[:, 1]))
+    model = gcp.fit_polynomial(image_xy, map_xy, 1)
+    expected_transform, expected_shape = gdal_suggested_grid(
+        (351, 369), gcps=np.column_stack([image_xy, map_xy]))
+    got_transform, got_shape = suggested_grid((351, 369), model)
+    assert got_shape == expected_shape
+    np.testing.assert_allclose(tuple(got_transform)[:6], tuple(expected_transform)[:6],
+                               rtol=0, atol=1e-6)
+
+
+def test_resolution_and_target_aligned_pixels():
+    from rasterio.warp import aligned_target
+    transform = affine.Affine(2.5, 0, 770595.0, 0, -2.5, 7370115.0) @ affine.Affine.rotation(7)
+    natural, (rows, cols) = suggested_grid((300, 400), transform)
+    # -tr keeps the extent's top-left corner and cuts it into whole pixels, rounded
+    grid, shape = suggested_grid((300, 400), transform, resolution=(20, 30))
+    assert (grid.a, grid.e, grid.c, grid.f) == (20, -30, natural.c, natural.f)
+    assert shape == (round(rows * natural.a / 30), round(cols * natural.a / 20))
+    # -tap: edges on multiples of the resolution, the whole extent inside
+    aligned, (a_rows, a_cols) = suggested_grid((300, 400), transform, resolution=20, tap=True)
+    assert aligned.c % 20 == 0 and aligned.f % 20 == 0
+    assert aligned.c <= natural.c and aligned.f >= natural.f
+    assert aligned.c + 20 * a_cols >= natural.c + natural.a * cols
+    assert aligned.f - 20 * a_rows <= natural.f - natural.a * rows
+    # rasterio's -tap (its aligned_target) agrees
+    reference, width, height = aligned_target(natural, cols, rows, 20)
+    assert (tuple(reference)[:6], height, width) == (tuple(aligned)[:6], a_rows, a_cols)
+
+
+@pytest.mark.parametrize("resolution", [0, -20, (20, 0), np.nan, "20 m", (20, 20, 20)])
+def test_resolution_must_be_positive(resolution):
+    with pytest.raises(ValueError, match="resolution must be one or two finite numbers above 0"):
+        suggested_grid((10, 10), affine.Affine.identity(), resolution=resolution)
+
+
+def test_suggested_grid_refuses_tap_without_resolution_and_flat_mappings():
+    with pytest.raises(ValueError, match="tap=True needs a resolution"):
+        suggested_grid((10, 10), affine.Affine.identity(), tap=True)
+    with pytest.raises(ValueError, match="onto a point or a line"):
+        suggested_grid((10, 10), lambda points: np.zeros_like(points))
+    with pytest.raises(ValueError, match=r"\(n, 2\)"):
+        suggested_grid((10, 10), lambda points: points[:, 0])
+
+
+# -- GDAL's "average" ---------------------------------------------------------------
+
+from rsgeo.resample import WARP_METHODS  # noqa: E402
+
+AVERAGED_GRIDS = dict(DOWNSAMPLED_GRIDS, **{
+    "beyond the edge": (SOURCE_TRANSFORM @ affine.Affine.translation(-20.3, -15.7)
+                        @ affine.Affine.rotation(7) @ affine.Affine.scale(4.3), (90, 110)),
+    "upsampled": (SOURCE_TRANSFORM @ affine.Affine.translation(-20.3, -15.7)
+                  @ affine.Affine.rotation(7) @ affine.Affine.scale(0.7), (300, 400)),
+})
+
+
+@pytest.mark.parametrize("grid", AVERAGED_GRIDS)
+@pytest.mark.parametrize("dtype", ["uint8", "int16", "float32"])
+def test_average_matches_gdal(grid, dtype):
+    dst_transform, shape = AVERAGED_GRIDS[grid]
+    image = noise((300, 400), dtype, seed=14)
+    scale = grid_scale(~SOURCE_TRANSFORM, shape, dst_transform, image.shape)
+    for nodata in (0, None):
+        expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape,
+                             "average", nodata, scale=scale)
+        got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method="average",
+                   nodata=nodata)
+        assert np.count_nonzero(got != expected) == 0
+    # gdalwarp's own scale, without nodata. (Upsampled, gdalwarp cuts this grid into
+    # chunks and takes the corners relative to each chunk's source window, which moves
+    # their last bits: a few float32 cells and 1 int16 cell in 120 000 differ.)
+    if grid != "upsampled":
+        expected = gdalwarp_reproject(image, SOURCE_TRANSFORM, dst_transform, shape, "average",
+                                      None)
+        assert np.count_nonzero(got != expected) == 0
+
+
+def test_average_through_a_polynomial_matches_gdal():
+    # a callable mapping: the cells' corners go through the model, strip by strip
+    rng = np.random.default_rng(3)
+    image = noise((320, 320), seed=3)
+    image_xy = rng.uniform(0, 320, (12, 2))
+    u, v = image_xy[:, 0] - 160, image_xy[:, 1] - 160
+    map_xy = np.column_stack([600_000 + 10 * image_xy[:, 0] + 0.4 * image_xy[:, 1] + 0.002 * u * v,
+                              7_300_000 - 10 * image_xy[:, 1] + 0.5 * image_xy[:, 0] + 0.003 * u * u])
+    dst_transform = affine.Affine(37.0, 0, 600_400, 0, -37.0, 7_299_600)
+    shape = (80, 80)
+    model = gcp.fit_polynomial(map_xy, image_xy, 2)
+    scale = grid_scale(model, shape, dst_transform, image.shape)
+    expected = gdal_warp(image, gcp_source(image_xy, map_xy, 2), dst_transform, shape, "average",
+                         0, scale=scale)
+    got = warp(image, model, shape, dst_transform, method="average", nodata=0, strip_rows=7)
+    assert (got != 0).sum() > got.size / 2
+    assert np.count_nonzero(got != expected) == 0
+
+
+def test_average_is_the_block_mean_on_whole_blocks():
+    # 4 x 4 blocks of a 40 x 40 image: plain block means, rounded half up, except that
+    # GDAL's incremental mean may land a hair below an exact half (x.5 -> x)
+    image = noise((40, 40), "int16", seed=15)
+    got = warp(image, affine.Affine.scale(4.0), (10, 10), method="average", nodata=None)
+    mean = image.astype(float).reshape(10, 4, 10, 4).mean(axis=(1, 3))
+    half = mean - np.floor(mean) == 0.5
+    np.testing.assert_array_equal(got[~half], np.floor(mean + 0.5)[~half])
+    assert np.isin(got[half] - np.floor(mean[half]), [0, 1]).all()
+    assert "average" in WARP_METHODS and "average" not in METHODS
+    with pytest.raises(ValueError, match="unknown method 'average'"):
+        interpolate(image, [1.0], [1.0], "average")
+
+
+# -- the exercises' checks for the output grid --------------------------------------
+
+from rsgeo import exercises  # noqa: E402
+
+TILTED = (affine.Affine.translation(770596.79, 7370112.81) @ affine.Affine.rotation(-8)
+          @ affine.Affine.scale(20.0, -25.0))
+HRC_TRANSFORM = affine.Affine(2.5, 0, 770595.0, 0, -2.5, 7370115.0)
+
+
+def _pixel_size_by_hand(kind="right"):
+    rows, cols = 351, 369
+    (x0, x1), (y0, y1) = TILTED @ (np.array([0.0, cols]), np.array([0.0, rows]))
+    diagonal = np.hypot(x1 - x0, y1 - y0)
+    return {"right": diagonal / np.hypot(rows, cols), "width": 20.0, "height": 25.0,
+            "mean": 22.5, "sum": diagonal / (rows + cols),
+            "inverse": np.hypot(rows, cols) / diagonal}[kind]
+
+
+@pytest.mark.parametrize("kind, hint", [("width", "pixel width alone"),
+                                        ("height", "pixel height alone"),
+                                        ("mean", "mean of width and height"),
+                                        ("sum", "not rows + cols"), ("inverse", "Upside down")])
+def test_pixel_size_check_recognises_mistakes(kind, hint):
+    right = exercises.check_output_pixel_size(_pixel_size_by_hand(), (351, 369), TILTED)
+    assert right.ok, right
+    verdict = exercises.check_output_pixel_size(_pixel_size_by_hand(kind), (351, 369), TILTED)
+    assert not verdict.ok and hint in verdict.hint
+    expected = f"{_pixel_size_by_hand():.4g}"
+    assert expected not in repr(verdict)
+    with pytest.raises(exercises.ExerciseNotSolved):
+        exercises.check_output_pixel_size(..., (351, 369), TILTED)
+    assert "not a number" in repr(exercises.check_output_pixel_size({}, (351, 369), TILTED))
+
+
+@pytest.mark.parametrize("answer, hint", [
+    ((770595.0, 7370115.0, 352, 370), "footprint's own edges"),
+    ((770600.0, 7370100.0, 352, 370), "Outwards"),
+    ((770580.0, 7370120.0, 351, 369), "size without -tap"),
+    ((770580.0, 7370120.0, 370, 352), "Rows come first"),
+])
+def test_grid_extent_check_recognises_mistakes(answer, hint):
+    shape = (2810, 2954)
+    right = exercises.check_grid_extent((770580.0, 7370120.0, 352, 370), shape, HRC_TRANSFORM, 20)
+    assert right.ok, right
+    verdict = exercises.check_grid_extent(answer, shape, HRC_TRANSFORM, 20)
+    assert not verdict.ok and hint in verdict.hint
+    assert "770580" not in repr(verdict) and "7370120" not in repr(verdict)
+    assert "four numbers" in repr(exercises.check_grid_extent((1, 2), shape, HRC_TRANSFORM, 20))
+    assert "four numbers" in repr(exercises.check_grid_extent("west", shape, HRC_TRANSFORM, 20))
+    with pytest.raises(exercises.ExerciseNotSolved):
+        exercises.check_grid_extent(..., shape, HRC_TRANSFORM, 20)
+    with pytest.raises(ValueError, match="resolution must be"):
+        exercises.check_grid_extent(answer, shape, HRC_TRANSFORM, 0)

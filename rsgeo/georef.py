@@ -1,0 +1,422 @@
+"""Coordinate reference systems, datum shifts and a complete georeferencing run.
+
+Map coordinates only mean something with their CRS: the CBERS scenes shipped
+with rsgeo are in SAD69 / UTM, Brazil's datum since 2015 is SIRGAS 2000, and the
+same point has UTM coordinates tens of metres apart in the two. This module
+moves points and rasters between CRSs through PROJ (via rasterio, the PROJ that
+GDAL itself uses), and runs the whole correction a user makes in QGIS's
+Georeferencer or with ``gdalwarp``: fit a model to the GCPs, choose an output
+grid, warp, and save a GeoTIFF.
+
+Examples
+--------
+>>> from rsgeo import georef
+>>> x, y = georef.transform_points([[500000.0, 7400000.0]], "EPSG:29193", "EPSG:31983")[0]
+>>> 30 < float(np.hypot(x - 500000.0, y - 7400000.0)) < 80     # SAD69 -> SIRGAS 2000
+True
+"""
+
+import re
+
+import numpy as np
+
+from ._checks import as_points, check_choice
+from .data import Raster
+from . import gcp as _gcp
+from .gcp import GCPSet
+from .resample import suggested_grid, warp
+
+__all__ = ["as_crs", "transform_points", "datum_shift", "geocentric_translation",
+           "CRSMapping", "reproject", "georeference"]
+
+# EPSG:15485, "SAD69 to SIRGAS 2000 (1)": geocentric translations in metres (accuracy 5 m)
+SAD69_TO_SIRGAS2000 = (-67.35, 3.88, -38.22)
+
+_METHODS = ("nearest", "bilinear", "cubic")
+
+
+def as_crs(crs, name="crs"):
+    """A rasterio CRS from a code, a string or a CRS, refusing one PROJ does not know.
+
+    Parameters
+    ----------
+    crs : str, int or rasterio.crs.CRS
+        ``"EPSG:29193"``, ``29193``, a WKT or PROJ string, or a CRS.
+    name : str
+        The argument's name, for the error message.
+
+    Returns
+    -------
+    rasterio.crs.CRS
+
+    Raises
+    ------
+    ValueError
+        If ``crs`` is None or PROJ does not recognise it.
+
+    Examples
+    --------
+    >>> as_crs(31983).to_epsg()
+    31983
+    """
+    from rasterio.crs import CRS
+    from rasterio.errors import CRSError
+
+    if crs is None:
+        raise ValueError(f"{name} is None; a CRS is needed, e.g. 'EPSG:31983' "
+                         "(SIRGAS 2000 / UTM zone 23S)")
+    if isinstance(crs, CRS):
+        return crs
+    try:
+        value = CRS.from_epsg(crs) if isinstance(crs, (int, np.integer)) else CRS.from_user_input(crs)
+    except (CRSError, TypeError, ValueError) as error:
+        raise ValueError(f"{name} {crs!r} is not a CRS that PROJ knows ({error}); give an EPSG "
+                         "code such as 'EPSG:31983', a WKT or a PROJ string") from None
+    return value
+
+
+def transform_points(points, src_crs, dst_crs):
+    """Map coordinates (x, y) moved from one CRS to another by PROJ.
+
+    PROJ picks the transformation (datum shift) it would pick for ``gdalwarp``
+    with the grids it has; without network access and without the SAD69
+    grid, SAD69 -> SIRGAS 2000 is EPSG:15485, three geocentric translations.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Easting, northing (or longitude, latitude) in ``src_crs``.
+    src_crs, dst_crs : str, int or rasterio.crs.CRS
+        See :func:`as_crs`.
+
+    Returns
+    -------
+    ndarray
+        (n, 2) float64 in ``dst_crs``.
+
+    Raises
+    ------
+    ValueError
+        For a CRS that PROJ does not know, or points that are not (n, 2) finite.
+
+    Examples
+    --------
+    >>> transform_points([[0.0, 0.0]], "EPSG:4326", "EPSG:4326")
+    array([[0., 0.]])
+    """
+    from rasterio.warp import transform
+
+    points = as_points(points, "points")
+    src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
+    if src == dst:
+        return points.copy()
+    xs, ys = transform(src, dst, points[:, 0], points[:, 1])
+    result = np.column_stack([xs, ys]).astype(np.float64)
+    if not np.isfinite(result).all():
+        raise ValueError(f"PROJ could not transform some points from {src} to {dst} "
+                         "(outside the CRS's area of use?)")
+    return result
+
+
+def datum_shift(points, src_crs, dst_crs):
+    """How far each point's coordinates move from ``src_crs`` to ``dst_crs``.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Map (x, y) in ``src_crs``.
+    src_crs, dst_crs : str, int or rasterio.crs.CRS
+        Two projected CRSs with the same units (e.g. SAD69 / UTM 21S and
+        SIRGAS 2000 / UTM 21S).
+
+    Returns
+    -------
+    dx, dy, distance : ndarray
+        Per point, in the CRSs' units (metres for UTM).
+
+    Raises
+    ------
+    ValueError
+        As :func:`transform_points`.
+
+    Examples
+    --------
+    >>> dx, dy, d = datum_shift([[500000.0, 7400000.0]], "EPSG:29193", "EPSG:31983")
+    >>> bool(dx[0] < 0 and dy[0] < 0)
+    True
+    """
+    points = as_points(points, "points")
+    moved = transform_points(points, src_crs, dst_crs)
+    dx, dy = (moved - points).T
+    return dx, dy, np.hypot(dx, dy)
+
+
+def _geographic(crs):
+    """(geographic CRS, semi-major axis, flattening) of a CRS's datum, from its WKT1."""
+    from rasterio.crs import CRS
+
+    wkt = crs.to_wkt()
+    start = wkt.find("GEOGCS[")
+    depth, end = 0, start
+    for end in range(start, len(wkt)):
+        depth += {"[": 1, "]": -1}.get(wkt[end], 0)
+        if depth == 0 and wkt[end] == "]":
+            break
+    geogcs = wkt[start:end + 1]
+    spheroid = re.search(r'SPHEROID\["[^"]*",([-+.\deE]+),([-+.\deE]+)', geogcs)
+    if start < 0 or spheroid is None:
+        raise ValueError(f"cannot find the datum's ellipsoid in {crs}")
+    inverse_flattening = float(spheroid.group(2))
+    return (CRS.from_wkt(geogcs), float(spheroid.group(1)),
+            1 / inverse_flattening if inverse_flattening else 0.0)
+
+
+def _to_geocentric(lon, lat, a, f):
+    """Longitude, latitude (degrees, height 0) -> Earth-centred X, Y, Z on an ellipsoid."""
+    lon, lat = np.radians(lon), np.radians(lat)
+    e2 = f * (2 - f)
+    n = a / np.sqrt(1 - e2 * np.sin(lat) ** 2)
+    return (n * np.cos(lat) * np.cos(lon), n * np.cos(lat) * np.sin(lon),
+            n * (1 - e2) * np.sin(lat))
+
+
+def _to_geographic(x, y, z, a, f):
+    """Earth-centred X, Y, Z -> longitude, latitude in degrees (iterated, to 1e-12 rad)."""
+    e2 = f * (2 - f)
+    p = np.hypot(x, y)
+    lat = np.arctan2(z, p * (1 - e2))
+    for _ in range(10):
+        n = a / np.sqrt(1 - e2 * np.sin(lat) ** 2)
+        height = p / np.cos(lat) - n
+        lat = np.arctan2(z, p * (1 - e2 * n / (n + height)))
+    return np.degrees(np.arctan2(y, x)), np.degrees(lat)
+
+
+def geocentric_translation(points, src_crs, dst_crs, translation=SAD69_TO_SIRGAS2000):
+    """A datum shift by three geocentric translations, computed here without PROJ's choice.
+
+    The EPSG method "Geocentric translations": geographic coordinates on the
+    source ellipsoid -> Earth-centred X, Y, Z -> add (tx, ty, tz) -> back to
+    geographic on the target ellipsoid (heights taken as 0). PROJ is used only
+    for the projection steps (UTM <-> geographic, same datum). Comparing the
+    result with :func:`transform_points` shows which transformation PROJ chose.
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Map (x, y) in ``src_crs``.
+    src_crs, dst_crs : str, int or rasterio.crs.CRS
+        Projected or geographic CRSs on two datums.
+    translation : (tx, ty, tz)
+        Metres; EPSG:15485's SAD69 -> SIRGAS 2000 values by default.
+
+    Returns
+    -------
+    ndarray
+        (n, 2) map (x, y) in ``dst_crs``.
+
+    Raises
+    ------
+    ValueError
+        As :func:`transform_points`; if ``translation`` is not three finite numbers.
+
+    Examples
+    --------
+    >>> p = [[775445.0, 7369105.0]]
+    >>> here = geocentric_translation(p, "EPSG:29191", "EPSG:31981")
+    >>> bool(np.abs(here - transform_points(p, "EPSG:29191", "EPSG:31981")).max() < 0.01)
+    True
+    """
+    shift = np.asarray(translation, dtype=np.float64)
+    if shift.shape != (3,) or not np.isfinite(shift).all():
+        raise ValueError(f"translation must be three finite numbers (tx, ty, tz) in metres, "
+                         f"got {translation!r}")
+    src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
+    (src_geo, *src_ellipsoid), (dst_geo, *dst_ellipsoid) = _geographic(src), _geographic(dst)
+    lonlat = transform_points(points, src, src_geo)
+    xyz = np.array(_to_geocentric(lonlat[:, 0], lonlat[:, 1], *src_ellipsoid))
+    lon, lat = _to_geographic(*(xyz + shift[:, np.newaxis]), *dst_ellipsoid)
+    return transform_points(np.column_stack([lon, lat]), dst_geo, dst)
+
+
+class CRSMapping:
+    """Output map (x, y) in ``dst_crs`` -> source (col, row), through PROJ then a model.
+
+    Parameters
+    ----------
+    to_source : callable or affine.Affine
+        Source map (x, y) in ``src_crs`` -> source image (col, row).
+    src_crs, dst_crs : rasterio.crs.CRS
+    """
+
+    def __init__(self, to_source, src_crs, dst_crs):
+        self.to_source, self.src_crs, self.dst_crs = to_source, src_crs, dst_crs
+
+    def __call__(self, points):
+        moved = transform_points(points, self.dst_crs, self.src_crs)
+        if callable(self.to_source):
+            return self.to_source(moved)
+        cols, rows = self.to_source @ (moved[:, 0], moved[:, 1])
+        return np.column_stack([cols, rows])
+
+
+def _as_raster(raster_or_path):
+    import rasterio
+
+    if isinstance(raster_or_path, Raster):
+        return raster_or_path
+    try:
+        with rasterio.open(raster_or_path) as dataset:
+            array = dataset.read()
+            return Raster(array[0] if dataset.count == 1 else array, dataset.transform,
+                          dataset.crs, dataset.nodata, "", str(raster_or_path))
+    except rasterio.errors.RasterioIOError as error:
+        raise ValueError(f"cannot read {raster_or_path!r} as a raster ({error}); give an "
+                         "rsgeo.data.Raster or the path of a GeoTIFF") from None
+
+
+def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
+    """A raster resampled into another CRS with rsgeo's GDAL-exact warp.
+
+    Every output pixel centre is taken to the source CRS by PROJ (exactly,
+    like ``gdalwarp -et 0``) and then to the source pixel by the inverse
+    geotransform. The output grid is north-up over the transformed footprint,
+    with the source's pixel size unless ``resolution`` is given.
+
+    Parameters
+    ----------
+    raster : rsgeo.data.Raster
+        With a CRS and a geotransform.
+    dst_crs : str, int or rasterio.crs.CRS
+    resolution : float, optional
+        Output pixel size in ``dst_crs`` units.
+    method : {"nearest", "bilinear", "cubic"}
+    nodata : number
+        Destination nodata (``gdalwarp -dstnodata``).
+
+    Returns
+    -------
+    rsgeo.data.Raster
+        In ``dst_crs``, with its transform and nodata.
+
+    Raises
+    ------
+    ValueError
+        For a raster without a CRS, a CRS PROJ does not know, a resolution
+        that is not positive, or an unknown method.
+
+    Examples
+    --------
+    >>> import affine
+    >>> image = np.arange(100, dtype=np.uint8).reshape(10, 10)
+    >>> raster = Raster(image, affine.Affine(20, 0, 500000, 0, -20, 7400000), as_crs(29193),
+    ...                 None, "", "ramp")
+    >>> reproject(raster, "EPSG:31983").crs.to_epsg()
+    31983
+    """
+    check_choice(method, "method", _METHODS)
+    if raster.crs is None:
+        raise ValueError(f"raster {raster.name!r} has no CRS; reprojecting needs to know "
+                         "which CRS its coordinates are in")
+    src_crs, dst = as_crs(raster.crs, "raster.crs"), as_crs(dst_crs, "dst_crs")
+    size = abs(raster.transform.a) if resolution is None else resolution
+
+    def pixel_to_dst(points):
+        xs, ys = raster.transform @ (points[:, 0], points[:, 1])
+        return transform_points(np.column_stack([xs, ys]), src_crs, dst)
+
+    transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_dst, resolution=size)
+    mapping = CRSMapping(~raster.transform, src_crs, dst)
+    array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
+    return Raster(array, transform, dst, nodata, f"{raster.description} reprojected to {dst}",
+                  raster.name)
+
+
+def _then_transform(pixel_to_map, src_crs, dst_crs):
+    """Source pixel -> map in ``src_crs`` -> map in ``dst_crs``."""
+    return lambda points: transform_points(pixel_to_map(points), src_crs, dst_crs)
+
+
+def _fit(gcps, kind, order):
+    """Map -> image model of the enabled GCPs."""
+    if kind == "polynomial":
+        return gcps.fit(1 if order is None else order)
+    fit_transform = getattr(_gcp, "fit_transform", None)   # rsgeo.gcp's other model kinds
+    if fit_transform is None:
+        raise ValueError(f"kind {kind!r} is not available; use kind='polynomial' with an order")
+    return fit_transform(gcps.map_xy[gcps.enabled], gcps.image_xy[gcps.enabled], kind, order)
+
+
+def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=None,
+                 method="nearest", nodata=0, dst_crs=None):
+    """The corrected image a user makes: fit the GCPs, choose the grid, warp.
+
+    The same run as ``gdalwarp -order N -et 0 -r METHOD -dstnodata NODATA``
+    on an image carrying GCPs: the model maps output map (x, y) to source
+    (col, row) (through PROJ first when ``dst_crs`` differs from the GCPs'
+    CRS, as GDAL chains them), and the output grid is GDAL's suggestion
+    (footprint extent, diagonal-preserving pixel size) or ``resolution``.
+
+    Parameters
+    ----------
+    raster_or_path : rsgeo.data.Raster or path
+        The uncorrected image (its own transform and CRS are ignored).
+    gcps : rsgeo.gcp.GCPSet
+        With the map coordinates' CRS in ``gcps.crs`` when ``dst_crs`` is given.
+    kind : str
+        ``"polynomial"``, or another kind that ``rsgeo.gcp.fit_transform`` knows.
+    order : {1, 2, 3} or None
+        Polynomial degree (None for kinds without one, e.g. "helmert").
+    resolution : float, optional
+        Output pixel size in map units (``gdalwarp -tr``).
+    method : {"nearest", "bilinear", "cubic"}
+    nodata : number
+        Destination nodata.
+    dst_crs : str, int or rasterio.crs.CRS, optional
+        Output CRS; the GCPs' CRS by default.
+
+    Returns
+    -------
+    rsgeo.data.Raster
+        With transform, CRS and nodata; save it with :func:`rsgeo.data.save`.
+
+    Raises
+    ------
+    ValueError
+        Too few or collinear GCPs, a GCP set without a CRS when ``dst_crs`` is
+        given, a CRS PROJ does not know, a resolution that is not positive, or
+        an unknown method.
+
+    Examples
+    --------
+    >>> from rsgeo import data
+    >>> corrected = georeference(data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc"),
+    ...                          order=1, resolution=20.0)
+    >>> corrected.transform.a, corrected.crs.to_epsg()
+    (20.0, 29191)
+    """
+    check_choice(method, "method", _METHODS)
+    if not isinstance(gcps, GCPSet):
+        raise ValueError(f"gcps must be an rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
+    raster = _as_raster(raster_or_path)
+    model = _fit(gcps, kind, order)
+    reverse = (model.reverse() if hasattr(model, "reverse") else model.inverse())
+    pixel_to_map = reverse
+    src_crs = None if gcps.crs is None else as_crs(gcps.crs, "gcps.crs")
+    mapping = model
+    if dst_crs is not None:
+        dst = as_crs(dst_crs, "dst_crs")
+        if src_crs is None:
+            raise ValueError("the GCPs have no CRS (gcps.crs is None); set it to reproject "
+                             "into dst_crs")
+        if dst != src_crs:
+            pixel_to_map = _then_transform(reverse, src_crs, dst)
+            mapping = CRSMapping(model, src_crs, dst)
+        src_crs = dst
+    # gdalwarp's suggested output grid (GDALSuggestedWarpOutput2; -tr when a resolution is given)
+    transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_map, resolution=resolution)
+    array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
+    return Raster(array, transform, src_crs, nodata,
+                  f"{raster.name or 'image'} georeferenced: {kind}"
+                  f"{f' order {order}' if order is not None else ''}, {method}",
+                  raster.name)
