@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import distortion, gcp, georef, radiometry, resample
-from ._checks import as_points
+from ._checks import as_points, as_shape
 from .matching import BITS_PER_GENE, decode, fitness
 
 __all__ = [
@@ -614,7 +614,7 @@ def _blunder_by_number(answer, ids, worst, generic):
     if isinstance(answer, (list, tuple)) or np.ndim(answer) > 0:
         size = len(answer)
         raise _WrongForm(f"`gcp_id` holds {size} value(s); the check needs ONE id, a string such as "
-                         f"{ids[0]!r}" + (f": take it out with `gcp_id[0]`." if size == 1 else "."))
+                         f"{ids[0]!r}" + (": take it out with `gcp_id[0]`." if size == 1 else "."))
     number = _integer(answer, "gcp_id", "a position in the table")
     intro = f"`gcp_id` is the number {number}, not a GCP id: ids are strings such as {ids[0]!r}. "
     if 0 <= number < len(ids) and ids[number] == worst:
@@ -929,7 +929,7 @@ def check_output_pixel_size(pixel_size, src_shape, transform):
     >>> check_output_pixel_size(20.0, (100, 100), affine.Affine(20, 0, 0, 0, -20, 0))
     Correct: `pixel_size` = 20 m.
     """
-    rows, cols = resample.check_shape(src_shape, "src_shape")
+    rows, cols = as_shape(src_shape, "src_shape")
     grid, _ = resample.suggested_grid((rows, cols), transform)
     expected = float(grid.a)
     corners_x, corners_y = transform @ (np.array([0.0, cols, 0.0, cols]),

@@ -66,11 +66,11 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 from numba import njit, prange  # noqa: E402
 
-from ._checks import as_image, check_choice
+from ._checks import as_image, as_shape, check_choice
 
 __all__ = [
     "METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
-    "check_num_threads", "check_nodata", "check_bands_first", "check_shape", "grid_positions",
+    "check_num_threads", "check_nodata", "check_bands_first", "grid_positions",
     "warp", "check_scale", "grid_scale", "check_resolution", "suggested_grid",
 ]
 
@@ -1010,51 +1010,6 @@ def check_bands_first(image, name="image"):
     return image
 
 
-def check_shape(shape, name="shape"):
-    """Return ``shape`` as a (rows, cols) tuple of positive ints, else raise ValueError.
-
-    Parameters
-    ----------
-    shape : sequence of two numbers
-        A grid size, (rows, cols); whole-valued floats are accepted.
-    name : str
-        Its name in the error message.
-
-    Returns
-    -------
-    (int, int)
-
-    Raises
-    ------
-    ValueError
-        If ``shape`` is a single number, has other than two entries, or holds
-        anything but positive whole numbers.
-
-    Examples
-    --------
-    >>> check_shape((351.0, 369))
-    (351, 369)
-    >>> check_shape(351)
-    Traceback (most recent call last):
-    ...
-    ValueError: shape must be (rows, cols), two positive integers, got 351
-    """
-    message = f"{name} must be (rows, cols), two positive integers, got {shape!r}"
-    try:
-        values = tuple(shape)
-    except TypeError:
-        raise ValueError(message) from None
-    if len(values) != 2:
-        raise ValueError(message)
-    try:
-        ok = all(float(n).is_integer() and n >= 1 for n in values)
-    except (TypeError, ValueError):
-        ok = False
-    if not ok:
-        raise ValueError(message)
-    return int(values[0]), int(values[1])
-
-
 def grid_positions(shape, transform=None, first_row=0):
     """Map coordinates of the centres of an output grid's cells.
 
@@ -1171,7 +1126,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     check_choice(method, "method", WARP_METHODS)
     nodata = check_nodata(nodata, image.dtype)
     num_threads = check_num_threads(num_threads)
-    out_rows, out_cols = check_shape(shape)
+    out_rows, out_cols = as_shape(shape)
     to_map = transform if transform is not None else affine.Affine.identity()
     scale = (check_scale(scale) if scale is not None
              else grid_scale(mapping, (out_rows, out_cols), to_map, image.shape[-2:]))
@@ -1280,7 +1235,7 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
     >>> grid_scale(affine.Affine.scale(8.0), (100, 50))
     (0.125, 0.125)
     """
-    rows, cols = check_shape(shape)
+    rows, cols = as_shape(shape)
     to_map = transform if transform is not None else affine.Affine.identity()
     t = np.linspace(0.0, 1.0, samples)
     px = np.concatenate([t * cols, t * cols, np.zeros(samples), np.full(samples, float(cols))])
@@ -1297,7 +1252,7 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
     spans = [source_cols.max() - source_cols.min(), source_rows.max() - source_rows.min()]
     if src_shape is not None:
         # GDAL's dfSrcXSizeRaw: the span, at most from the clamped start to the image's edge
-        height, width = check_shape(src_shape, "src_shape")
+        height, width = as_shape(src_shape, "src_shape")
         for axis, (low, size) in enumerate([(source_cols.min(), width),
                                             (source_rows.min(), height)]):
             spans[axis] = max(0.0, min(float(size - int(max(0.0, low))), spans[axis]))
@@ -1408,7 +1363,7 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     ...                resolution=20, tap=True)[1]
     (352, 370)
     """
-    height, width = check_shape(src_shape, "src_shape")
+    height, width = as_shape(src_shape, "src_shape")
     if resolution is not None:
         resolution = check_resolution(resolution)
     elif tap:

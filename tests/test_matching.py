@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rsgeo import experiments, gcp, matching, regions, synthetic
+from rsgeo import experiments, matching, regions, synthetic
 
 
 def test_fitness_by_hand_on_three_segments():
