@@ -21,38 +21,24 @@ The experiments themselves live in rsgeo.experiments (the chapter's live run cal
 """
 
 import argparse
-import os
-import platform
 import sys
 import time
-from datetime import date
 from pathlib import Path
 
 import numba
-import numpy as np
 import pandas as pd
 import scipy
 
-import rsgeo
 from rsgeo import experiments
+
+from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 
 RESULTS = Path(__file__).resolve().parent / "results"
 
 
 def machine():
     """'# key: value' lines naming the machine and the versions."""
-    processor = platform.processor() or platform.machine()
-    try:
-        with open("/proc/cpuinfo") as file:
-            processor = next(line.split(":", 1)[1].strip() for line in file
-                             if line.startswith("model name"))
-    except (OSError, StopIteration):
-        pass
-    usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    return {"date": str(date.today()), "cpus": os.cpu_count(), "cpus usable": usable,
-            "processor": processor, "python": platform.python_version(), "numpy": np.__version__,
-            "scipy": scipy.__version__, "numba": numba.__version__, "pandas": pd.__version__,
-            "rsgeo": rsgeo.__version__}
+    return describe(scipy=scipy.__version__, numba=numba.__version__, pandas=pd.__version__)
 
 
 def save(table, name, seeds, seconds):
@@ -60,7 +46,7 @@ def save(table, name, seeds, seconds):
     header = {"command": f"python benchmarks/{Path(__file__).name} {' '.join(sys.argv[1:])}".strip(),
               "seeds": f"{seeds[0]} to {seeds[-1]} ({len(seeds)} seeds)", **machine(),
               "seconds": f"{seconds:.0f} (the whole table; times depend on the machine and its load)"}
-    text = "".join(f"# {key}: {value}\n" for key, value in header.items())
+    text = header_lines(header)
     path = RESULTS / name
     path.write_text(text + table.to_csv(index=False, float_format="%.4f"))
     print(f"wrote {path.relative_to(RESULTS.parent.parent)}")

@@ -29,9 +29,7 @@ second, the work such a warp does.
 
 import argparse
 import csv
-import datetime
 import os
-import platform
 import subprocess
 import sys
 import tempfile
@@ -41,6 +39,7 @@ from pathlib import Path
 import affine
 import numpy as np
 
+from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 from rsgeo.resample import warp
 
 METHODS = ("nearest", "bilinear", "cubic")
@@ -200,28 +199,18 @@ def jit_seconds(dtype="uint8"):
 def machine():
     """What the numbers depend on: date, processor, CPU count and library versions."""
     import numba
-    import numpy
     import rasterio
     import skimage
 
-    import rsgeo
-
-    info = {"date": datetime.date.today().isoformat(),
-            "cpus": str(os.cpu_count()),
-            "cpus usable": str(len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
-                               else os.cpu_count()),
-            "processor": _processor_name(),
-            "python": platform.python_version(), "numpy": numpy.__version__,
-            "numba": f"{numba.__version__} (threading layer {_threading_layer()})",
-            "rsgeo": getattr(rsgeo, "__version__", "?"), "GDAL": rasterio.__gdal_version__,
-            "rasterio": rasterio.__version__, "scikit-image": skimage.__version__}
     try:
         import cv2
 
-        info["OpenCV"] = cv2.__version__
+        opencv = cv2.__version__
     except ImportError:
-        info["OpenCV"] = "not installed"
-    return info
+        opencv = "not installed"
+    return describe(numba=f"{numba.__version__} (threading layer {_threading_layer()})",
+                    GDAL=rasterio.__gdal_version__, rasterio=rasterio.__version__,
+                    **{"scikit-image": skimage.__version__, "OpenCV": opencv})
 
 
 def _threading_layer():
@@ -234,24 +223,13 @@ def _threading_layer():
         return numba.threading_layer()
 
 
-def _processor_name():
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
-
-
 def save_csv(rows, file, command="", extra=None):
     """Write the table with the machine's description (and ``extra``) as
     ``# key: value`` lines above it."""
     file = Path(file)
     file.parent.mkdir(parents=True, exist_ok=True)
     with open(file, "w", newline="") as handle:
-        for key, value in {**machine(), **(extra or {}), "command": command}.items():
-            handle.write(f"# {key}: {value}\n")
+        handle.write(header_lines({**machine(), **(extra or {}), "command": command}))
         writer = csv.writer(handle)
         writer.writerow(["size", "dtype", "method", "peer", "threads", "Mpx_per_s", "ratio_to_GDAL"])
         for size, dtype, method, peer, threads, speed, ratio in rows:

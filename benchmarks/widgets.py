@@ -19,9 +19,7 @@ the CPU seconds of this process beside them depend on it much less.
 
 import argparse
 import csv
-import datetime
 import os
-import platform
 import statistics
 import sys
 import time
@@ -32,6 +30,8 @@ import matplotlib
 matplotlib.use("Agg")
 
 import numpy as np  # noqa: E402
+
+from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 
 GOAL_MEDIAN, GOAL_WORST = 0.15, 0.3
 
@@ -111,29 +111,11 @@ def time_widget(build, repeat=2):
 def machine():
     """What the numbers depend on: date, processor, CPU count, load and library versions."""
     import ipywidgets
-    import matplotlib
 
-    import rsgeo
     from rsgeo.widgets import DPI
 
-    return {"date": datetime.date.today().isoformat(),
-            "cpus": str(os.cpu_count()),
-            "cpus usable": str(len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity")
-                               else os.cpu_count()),
-            "processor": _processor_name(),
-            "python": platform.python_version(), "numpy": np.__version__,
-            "matplotlib": f"{matplotlib.__version__} (Agg)", "ipywidgets": ipywidgets.__version__,
-            "rsgeo": getattr(rsgeo, "__version__", "?"), "frame dpi": str(DPI)}
-
-
-def _processor_name():
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
+    return describe(matplotlib=f"{matplotlib.__version__} (Agg)", ipywidgets=ipywidgets.__version__,
+                    **{"frame dpi": str(DPI)})
 
 
 def _load():
@@ -145,8 +127,7 @@ def save_csv(rows, file, extra):
     file = Path(file)
     file.parent.mkdir(parents=True, exist_ok=True)
     with open(file, "w", newline="") as handle:
-        for key, value in {**machine(), **extra}.items():
-            handle.write(f"# {key}: {value}\n")
+        handle.write(header_lines({**machine(), **extra}))
         writer = csv.writer(handle)
         writer.writerow(["widget", "control", "updates", "median_s", "worst_s", "median_cpu_s",
                          "worst_cpu_s", "build_s", "goal_met"])
