@@ -1031,7 +1031,7 @@ def grid_positions(shape, transform=None, first_row=0):
     ------
     IndexError, TypeError
         Nothing is checked here (callers such as :func:`warp` check ``shape``
-        with :func:`check_shape` first); a ``shape`` without two numbers fails
+        first, as rsgeo._checks.as_shape does); a ``shape`` without two numbers fails
         in NumPy.
 
     References
