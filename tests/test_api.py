@@ -5,6 +5,7 @@ import ast
 import importlib
 import inspect
 import pkgutil
+import re
 import subprocess
 import sys
 
@@ -196,3 +197,23 @@ def test_the_api_page_documents_every_public_module():
     assert not missing, f"book/api.md lacks an automodule for {missing}"
     toc = (PACKAGE.parent / "_toc.yml").read_text()
     assert "file: book/api" in toc
+
+
+@pytest.mark.parametrize("name", MODULES)
+def test_docstring_cross_references_resolve(name):
+    # the API page is built with -n: a :func:`name` that names nothing fails the book's build
+    module = importlib.import_module(name)
+    text = Path(module.__file__).read_text()
+    missing = []
+    for target in re.findall(r":(?:func|class|data|mod):`~?([A-Za-z_][\w.]*)`", text):
+        if target.startswith("rsgeo."):
+            parts, obj = target.split("."), None
+            try:
+                obj = importlib.import_module(".".join(parts[:2]))
+                for part in parts[2:]:
+                    obj = getattr(obj, part)
+            except (ImportError, AttributeError):
+                missing.append(target)
+        elif not hasattr(module, target.split(".")[0]):
+            missing.append(target)
+    assert not missing, f"{name}: cross-references to nothing: {missing}"
