@@ -47,14 +47,21 @@ def test_affine_warp_matches_gdal_bit_for_bit(method, dtype):
     assert np.array_equal(expected != 0, inside) or method == "nearest"
 
 
-@pytest.mark.parametrize("method", METHODS)
-def test_polynomial_warp_matches_gdal_bit_for_bit(method):
+def noise_and_curved_gcps():
+    """A 320 x 320 noise image and 12 GCPs of a mildly curved (degree-2) mapping to UTM-sized map
+    coordinates: the polynomial cases of the GDAL cross-checks."""
     rng = np.random.default_rng(3)
     image = noise((320, 320), seed=3)
     image_xy = rng.uniform(0, 320, (12, 2))
     u, v = image_xy[:, 0] - 160, image_xy[:, 1] - 160
     map_xy = np.column_stack([600_000 + 10 * image_xy[:, 0] + 0.4 * image_xy[:, 1] + 0.002 * u * v,
                               7_300_000 - 10 * image_xy[:, 1] + 0.5 * image_xy[:, 0] + 0.003 * u * u])
+    return image, image_xy, map_xy
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_polynomial_warp_matches_gdal_bit_for_bit(method):
+    image, image_xy, map_xy = noise_and_curved_gcps()
     # 7 m output pixels over 10 m input pixels: an up-sampling, where GDAL keeps the plain
     # kernels (at 9.5 m the shear makes its chunk scale fall below 0.95 and it widens them)
     dst_transform = affine.Affine(7.0, 0, 600_400, 0, -7.0, 7_299_600)
@@ -563,12 +570,7 @@ def test_average_matches_gdal(grid, dtype):
 
 def test_average_through_a_polynomial_matches_gdal():
     # a callable mapping: the cells' corners go through the model, strip by strip
-    rng = np.random.default_rng(3)
-    image = noise((320, 320), seed=3)
-    image_xy = rng.uniform(0, 320, (12, 2))
-    u, v = image_xy[:, 0] - 160, image_xy[:, 1] - 160
-    map_xy = np.column_stack([600_000 + 10 * image_xy[:, 0] + 0.4 * image_xy[:, 1] + 0.002 * u * v,
-                              7_300_000 - 10 * image_xy[:, 1] + 0.5 * image_xy[:, 0] + 0.003 * u * u])
+    image, image_xy, map_xy = noise_and_curved_gcps()
     dst_transform = affine.Affine(37.0, 0, 600_400, 0, -37.0, 7_299_600)
     shape = (80, 80)
     model = gcp.fit_polynomial(map_xy, image_xy, 2)
