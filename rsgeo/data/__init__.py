@@ -30,7 +30,8 @@ from .._checks import as_image
 from ..gcp import read_points
 from ..resample import check_bands_first
 
-__all__ = ["Raster", "available", "path", "load", "available_gcps", "load_gcps", "save"]
+__all__ = ["Raster", "available", "path", "load", "available_gcps", "load_gcps", "save",
+           "available_terrain"]
 
 _FOLDER = Path(__file__).parent
 
@@ -62,6 +63,20 @@ _DATASETS = {
         "nat2.tif",
         "Scene 2 of an overlapping pair, 25 m, one band, 8 bit (SAD69 / UTM 23S); overlaps "
         "nat1. Sensor and date undocumented (TerraLib's mosaic example)."),
+}
+
+
+# Terrain: a DEM and a Landsat 7 band of the same ground (Olinda, Pernambuco), from the Debian
+# package r-cran-stars (Apache-2.0); see README.md. load() and path() read them like the scenes.
+_TERRAIN = {
+    "olinda_dem": (
+        "olinda_dem.tif",
+        "Digital elevation model of Olinda, Pernambuco, 90 m, float32 heights in metres "
+        "(-1 to 88; UTM 25S, GRS80). From the R package stars (Apache-2.0)."),
+    "olinda_l7_b4": (
+        "olinda_l7_b4.tif",
+        "Landsat 7 ETM+ band 4 (near infrared) of Olinda, 28.5 m, the same ground as "
+        "olinda_dem (SIRGAS 2000 / UTM 25S). From the R package stars (Apache-2.0)."),
 }
 
 
@@ -207,7 +222,8 @@ def path(name):
     ('nat1.tif', '.points', 'nat2.tif')
     """
     files = {**{key: entry[0] for key, entry in _DATASETS.items()},
-             **{key: entry[0] for key, entry in _GCP_FILES.items()}}
+             **{key: entry[0] for key, entry in _GCP_FILES.items()},
+             **{key: entry[0] for key, entry in _TERRAIN.items()}}
     if name in files:
         return _FOLDER / files[name]
     if name in files.values():
@@ -223,7 +239,7 @@ def load(name):
     Parameters
     ----------
     name : str
-        One of :func:`available`.
+        One of :func:`available` or :func:`available_terrain`.
 
     Returns
     -------
@@ -236,14 +252,39 @@ def load(name):
     """
     import rasterio
 
-    if name not in _DATASETS:
-        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(available())}")
-    file = _FOLDER / _DATASETS[name][0]
+    registry = _TERRAIN if name in _TERRAIN else _DATASETS
+    if name not in registry:
+        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(available())}; "
+                         f"terrain: {', '.join(available_terrain())}")
+    file = _FOLDER / registry[name][0]
     with rasterio.open(file) as dataset:
         array = dataset.read()
         raster = Raster(array[0] if dataset.count == 1 else array, dataset.transform,
-                        dataset.crs, dataset.nodata, _DATASETS[name][1], name)
+                        dataset.crs, dataset.nodata, registry[name][1], name)
     return raster
+
+
+def available_terrain():
+    """Names of the shipped terrain datasets (a DEM and an image of its ground), for :func:`load`.
+
+    Returns
+    -------
+    list of str
+        Sorted: ``["olinda_dem", "olinda_l7_b4"]``.
+
+    Raises
+    ------
+    ValueError
+        Never.
+
+    Examples
+    --------
+    >>> available_terrain()
+    ['olinda_dem', 'olinda_l7_b4']
+    >>> load("olinda_dem").array.dtype.name
+    'float32'
+    """
+    return sorted(_TERRAIN)
 
 
 def available_gcps():
