@@ -1055,7 +1055,8 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0):
     return (gcp_error * np.sqrt(variance)).reshape(np.shape(x))
 
 
-def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=False):
+def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=False, valid=None,
+                   details=False):
     """Local misregistration of ``moving`` against ``reference`` on a grid of check points.
 
     At every check point of a regular grid, the sub-pixel shift between the
@@ -1080,6 +1081,13 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
         Sub-pixel precision: 1 / upsample pixel.
     taper : bool
         Hann-tapered cross-correlation instead of phase correlation.
+    valid : (rows, cols) array_like of bool, optional
+        False where a pixel must not be used (outside the moving image's
+        footprint, cloud, water): a window with any such pixel is skipped.
+    details : bool
+        Also return every window's reliability (what
+        :func:`rsgeo.tiepoints.correlation_tiepoints` filters on); then every
+        window of the grid is returned, a skipped one with NaN shifts.
 
     Returns
     -------
@@ -1087,13 +1095,20 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
         (col, row) of each check point.
     shifts : ndarray, shape (k, 2)
         (dcol, drow) to move ``moving`` onto ``reference`` at that point, pixels.
+    table : pandas.DataFrame
+        Only with ``details=True``, one row per point: ``peak`` (height of the
+        phase-correlation peak, 0-1), ``reliability`` (that peak over the rest
+        of the correlation surface, in its standard deviations), ``error``
+        (scikit-image's translation-invariant RMS error, 0-1), ``contrast``
+        (the smaller standard deviation of the two windows) and ``skipped``
+        ("" or why the window was not correlated: "constant", "invalid").
 
     Raises
     ------
     ValueError
         If the images differ in shape, are not 2-D or hold NaN, or step,
         window or upsample is not a positive whole number, or the window is
-        larger than the images.
+        larger than the images, or ``valid`` is not a mask of their shape.
 
     References
     ----------
@@ -1115,27 +1130,62 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
     if window > min(reference.shape):
         raise ValueError(f"window ({window} px) is larger than the images {reference.shape}; "
                          "use a window no larger than the smaller side")
+    if valid is not None:
+        valid = np.asarray(valid)
+        if valid.shape != reference.shape or valid.dtype != bool:
+            raise ValueError(f"valid must be a boolean mask of the images' shape {reference.shape}, "
+                             f"got {valid.dtype} of shape {valid.shape}")
     half = window // 2
     if taper:
         from skimage.filters import window as hann
 
         weights = hann("hann", (2 * half, 2 * half))
-    points, shifts = [], []
+    points, shifts, rows = [], [], []
     for row in range(half, reference.shape[0] - half + 1, step):
         for col in range(half, reference.shape[1] - half + 1, step):
             a = reference[row - half:row + half, col - half:col + half]
             b = moving[row - half:row + half, col - half:col + half]
-            if a.std() == 0 or b.std() == 0:
+            skipped = ("invalid" if valid is not None
+                       and not valid[row - half:row + half, col - half:col + half].all()
+                       else "constant" if a.std() == 0 or b.std() == 0 else "")
+            if skipped:
+                if details:
+                    points.append((col, row))
+                    shifts.append((np.nan, np.nan))
+                    rows.append({"peak": np.nan, "reliability": np.nan, "error": np.nan,
+                                 "contrast": min(a.std(), b.std()), "skipped": skipped})
                 continue
+            contrast = min(a.std(), b.std())
             if taper:
                 a, b = (a - a.mean()) * weights, (b - b.mean()) * weights
-                shift, _, _ = phase_cross_correlation(a, b, upsample_factor=upsample,
-                                                      normalization=None)
+                shift, error, _ = phase_cross_correlation(a, b, upsample_factor=upsample,
+                                                          normalization=None)
             else:
-                shift, _, _ = phase_cross_correlation(a, b, upsample_factor=upsample)
+                shift, error, _ = phase_cross_correlation(a, b, upsample_factor=upsample)
             points.append((col, row))
             shifts.append((shift[1], shift[0]))
-    return np.array(points, dtype=float).reshape(-1, 2), np.array(shifts, dtype=float).reshape(-1, 2)
+            if details:
+                rows.append({**_correlation_peak(a, b), "error": error, "contrast": contrast,
+                             "skipped": ""})
+    points = np.array(points, dtype=float).reshape(-1, 2)
+    shifts = np.array(shifts, dtype=float).reshape(-1, 2)
+    if not details:
+        return points, shifts
+    import pandas as pd
+
+    columns = ["peak", "reliability", "error", "contrast", "skipped"]
+    return points, shifts, pd.DataFrame(rows, columns=columns)
+
+
+def _correlation_peak(a, b):
+    """Height of the phase-correlation surface's peak, and its distance from the rest in standard
+    deviations (a sharp, lone peak is a reliable match; a peak among many is not)."""
+    spectrum = np.fft.fft2(a) * np.conj(np.fft.fft2(b))
+    surface = np.abs(np.fft.ifft2(spectrum / np.maximum(np.abs(spectrum), 1e-12 * np.abs(spectrum).max())))
+    flat = surface.ravel()
+    top = int(np.argmax(flat))
+    rest = np.delete(flat, top)
+    return {"peak": float(flat[top]), "reliability": float((flat[top] - rest.mean()) / (rest.std() or 1.0))}
 
 
 def _check_transform(transform, name):

@@ -49,7 +49,7 @@ from math import factorial
 import numpy as np
 from numba import njit
 
-from . import gcp
+from . import gcp, tiepoints
 from ._checks import as_points, check_choice, check_range
 
 __all__ = [
@@ -1058,6 +1058,8 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
     The GA paper, section 4: the matched centroids are GCPs for an affine
     transformation; GCPs with large errors are removed (here exactly as
     ``gdalwarp -refine_gcps tolerance min_gcps``) until the RMS is under a pixel.
+    The last steps are :func:`rsgeo.tiepoints.register`, which the automatic
+    tie points of :mod:`rsgeo.tiepoints` share.
 
     Parameters
     ----------
@@ -1100,7 +1102,8 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
     map_xy = reference.map_centroids(reference_transform)[labels - 1]
     if len(labels) < 3:
         raise ValueError(f"only {len(labels)} segments were matched; an affine model needs at least 3")
-    rms_all = gcp.fit_polynomial(map_xy, image_xy, 1).rms(map_xy, image_xy)
-    model, kept = gcp.refine_gcps(map_xy, image_xy, 1, tolerance, min(min_gcps, len(labels)))
-    rms_kept = model.rms(map_xy[kept], image_xy[kept])
-    return Registration(match, map_xy, image_xy, model, kept, rms_all, rms_kept)
+    # the pipeline every registration shares: tie points -> GCPSet -> model -> refinement
+    result = tiepoints.register(gcp.GCPSet(map_xy, image_xy), "polynomial", 1, tolerance,
+                                min(min_gcps, len(labels)))
+    return Registration(match, map_xy, image_xy, result.model, result.kept, result.rms_all,
+                        result.rms_kept)

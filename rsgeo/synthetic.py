@@ -243,7 +243,9 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
     date (crops grow and are harvested); forest remnants are irregular blobs
     with a high, stable signal. The adjustment image sees the same ground at
     another pixel size, rotated by ``rotation_deg`` and shifted by ``shift``
-    metres: the misregistration the paper's method must find.
+    metres: the misregistration the paper's method must find. Each image
+    averages a fine 10 m scene over its own pixel's footprint, centred on the
+    pixel, so both images sit where their geotransforms say.
 
     Parameters
     ----------
@@ -329,9 +331,14 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
         return ~fine_transform @ (transform @ (c, r))
 
     def sample(image, positions, pixel):
-        # the sensor integrates over its pixel: smooth the fine scene to its footprint first
-        blurred = ndimage.uniform_filter(image, size=max(1, int(round(pixel / fine))))
-        return interpolate(blurred, *positions, "bilinear")
+        # the sensor integrates over its pixel: smooth the fine scene to its footprint first.
+        # scipy's box of even size k covers cells i - k/2 .. i + k/2 - 1: its mean belongs
+        # to the corner (i, i) of cell i, half a cell before the cell's centre (i + 0.5),
+        # so an even box is read half a cell further to stay centred on each position.
+        size = max(1, int(round(pixel / fine)))
+        blurred = ndimage.uniform_filter(image, size=size)
+        half = 0.5 if size % 2 == 0 else 0.0
+        return interpolate(blurred, positions[0] + half, positions[1] + half, "bilinear")
 
     on_reference = fine_positions(reference_transform, n_ref)
     reference = np.round(sample(date1, on_reference, reference_pixel)).astype(np.uint8)

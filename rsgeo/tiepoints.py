@@ -1,0 +1,692 @@
+"""Automatic image-to-image registration: tie points by correlation and by features.
+
+Two ways to find GCPs without a human, both on scikit-image, both returning a
+:class:`rsgeo.gcp.GCPSet` (map coordinates through the reference's
+geotransform, image coordinates (col, row) in the moving image), so that the
+fitting, refinement and evaluation of chapters 2-4 apply unchanged:
+
+* :func:`correlation_tiepoints` - a grid of windows, each one's sub-pixel
+  shift by phase correlation (``skimage.registration.phase_cross_correlation``,
+  upsampled; Guizar-Sicairos et al. 2008), as AROSICS (Scheffler et al. 2017)
+  co-registers Landsat and Sentinel-2 scenes: the moving image is first
+  resampled onto the reference grid through a global estimate, the windows are
+  correlated there, the shifts are composed with the estimate, and this is
+  repeated. Unreliable windows are rejected (constant or masked, low contrast,
+  a weak correlation peak, outliers to a robust global fit).
+* :func:`feature_tiepoints` - SIFT (Lowe 2004) or ORB (Rublee et al. 2011)
+  keypoints, matched by their descriptors (``skimage.feature.match_descriptors``),
+  then RANSAC (Fischler and Bolles 1981; ``skimage.measure.ransac``) with any
+  model of :func:`rsgeo.gcp.fit_transform`, keeping the inliers.
+
+:func:`register` is the step every automatic method shares with the GA
+paper's (:func:`rsgeo.matching.register_by_regions`): tie points -> GCPSet ->
+model -> refinement (``gdalwarp -refine_gcps``) -> check points.
+"""
+
+import contextlib
+import ctypes
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import gcp, resample
+from ._checks import as_image, as_shape, check_choice, check_range
+
+__all__ = ["DETECTORS", "ransac_model", "robust_fit", "correlation_tiepoints",
+           "feature_tiepoints", "Registration", "register", "grid_error", "coarsen",
+           "perturb_transform"]
+
+DETECTORS = ("sift", "orb")
+
+
+def ransac_model(kind="polynomial", order=1):
+    """A model class for ``skimage.measure.ransac`` that fits :func:`rsgeo.gcp.fit_transform`.
+
+    scikit-image's RANSAC asks a class for ``from_estimate(src, dst)`` (a
+    fitted model, or a false value when the sample cannot determine one) and
+    the model for ``residuals(src, dst)``; rsgeo's models already follow that
+    protocol, so the class only wraps the fit.
+
+    Parameters
+    ----------
+    kind : {"linear", "helmert", "polynomial", "projective", "tps"}
+        As :func:`rsgeo.gcp.fit_transform`.
+    order : {1, 2, 3} or None
+        Polynomial order (only for ``kind="polynomial"``).
+
+    Returns
+    -------
+    type
+        A class with ``from_estimate`` and the attribute ``min_samples``
+        (:func:`rsgeo.gcp.min_gcps` of the kind).
+
+    Raises
+    ------
+    ValueError
+        For an unknown kind or an order that does not fit it.
+
+    Examples
+    --------
+    >>> Model = ransac_model("polynomial", 1)
+    >>> Model.min_samples
+    3
+    >>> src = np.array([[0, 0], [10, 0], [0, 10]], dtype=float)
+    >>> Model.from_estimate(src, src + 2)(np.array([[5.0, 5.0]])).round(6).tolist()
+    [[7.0, 7.0]]
+    """
+    order = None if kind != "polynomial" else order
+    needed = gcp.min_gcps(kind, order) if kind != "polynomial" else gcp.min_gcps(
+        "polynomial", order)
+
+    class RsgeoModel:
+        min_samples = needed
+        residuals = gcp.GeometricModel.residuals   # the fitted models' own, named for the protocol
+
+        @classmethod
+        def from_estimate(cls, src, dst):
+            try:
+                return gcp.fit_transform(src, dst, kind, order)
+            except (ValueError, np.linalg.LinAlgError):
+                return None
+
+    RsgeoModel.__name__ = f"RansacModel_{kind}{order or ''}"
+    return RsgeoModel
+
+
+def robust_fit(src, dst, kind="polynomial", order=1, threshold=1.0, max_trials=1000, seed=0):
+    """RANSAC fit of an rsgeo model: the model of the largest consistent subset, and that subset.
+
+    Parameters
+    ----------
+    src, dst : (n, 2) array_like
+        Point pairs (for GCPs: map x, y and image col, row).
+    kind, order
+        As :func:`rsgeo.gcp.fit_transform`.
+    threshold : float
+        Largest residual of an inlier, in dst units.
+    max_trials : int
+        Random samples RANSAC draws.
+    seed : int
+        Seed of RANSAC's sampling.
+
+    Returns
+    -------
+    model : GeometricModel
+        Refitted on all inliers.
+    inliers : ndarray of bool, shape (n,)
+
+    Raises
+    ------
+    ValueError
+        If there are fewer pairs than the model needs, or no sample gives a
+        model (all points collinear).
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5]], dtype=float)
+    >>> dst = src + 1.0
+    >>> dst[4] += 30                                   # one blunder
+    >>> model, inliers = robust_fit(src, dst, threshold=0.5)
+    >>> inliers.tolist()
+    [True, True, True, True, False]
+    """
+    from skimage.measure import ransac
+
+    src = np.asarray(src, dtype=np.float64)
+    dst = np.asarray(dst, dtype=np.float64)
+    model_class = ransac_model(kind, order)
+    if len(src) < model_class.min_samples:
+        what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
+        raise ValueError(f"{what} needs at least {model_class.min_samples} tie points, "
+                         f"got {len(src)}")
+    check_range(threshold, "threshold", 0, None, "a residual in dst units")
+    model, inliers = ransac((src, dst), model_class, model_class.min_samples, threshold,
+                            max_trials=int(max_trials), rng=np.random.default_rng(seed))
+    if not model or inliers is None or inliers.sum() < model_class.min_samples:
+        raise ValueError(f"RANSAC found no {kind} model supported by {model_class.min_samples} "
+                         f"or more of the {len(src)} tie points (collinear or all "
+                         "inconsistent); more, better spread tie points are needed")
+    return gcp.fit_transform(src[inliers], dst[inliers], kind, order), inliers
+
+
+@contextlib.contextmanager
+def _one_blas_thread():
+    """Run the block with NumPy's OpenBLAS on one thread, then restore its thread count.
+
+    phase_cross_correlation's upsampled DFT multiplies matrices of a few dozen rows: with several
+    BLAS threads on a busy machine each product waits for a core (25 ms instead of 1 ms here).
+    Where the library or its functions cannot be found (another BLAS, another system), nothing
+    changes.
+    """
+    functions = None
+    try:
+        with open("/proc/self/maps") as maps:
+            paths = sorted({line.split()[-1] for line in maps if "openblas" in line.lower()})
+        for path in paths:
+            library = ctypes.CDLL(path)
+            for prefix in ("scipy_openblas", "openblas"):
+                for suffix in ("64_", ""):
+                    get = getattr(library, f"{prefix}_get_num_threads{suffix}", None)
+                    set_ = getattr(library, f"{prefix}_set_num_threads{suffix}", None)
+                    if get is not None and set_ is not None and functions is None:
+                        functions = (get, set_)
+    except OSError:
+        functions = None
+    if functions is None:
+        yield
+        return
+    get, set_ = functions
+    before = get()
+    set_(1)
+    try:
+        yield
+    finally:
+        set_(before)
+
+
+def _transform(transform):
+    import affine
+
+    if transform is None:
+        return affine.Affine.identity()
+    return gcp._check_transform(transform, "reference_transform")
+
+
+def _to_map(transform, col_row):
+    return np.column_stack(transform @ (col_row[:, 0], col_row[:, 1]))
+
+
+def _apply(mapping, points):
+    """``mapping`` (a model, a function or an affine.Affine) on (n, 2) points."""
+    import affine
+
+    if isinstance(mapping, affine.Affine):
+        return _to_map(mapping, points)
+    return np.asarray(mapping(points), dtype=np.float64)
+
+
+def correlation_tiepoints(reference, moving, spacing, window, reference_transform=None,
+                          initial=None, kind="polynomial", order=1, iterations=3, upsample=20,
+                          min_contrast=2.0, min_reliability=8.0, tolerance=1.0, valid=None,
+                          method="cubic", taper=False, seed=0):
+    """Tie points on a grid of windows by phase correlation, AROSICS-style, with a reliability filter.
+
+    Each pass: resample ``moving`` onto the reference grid through the
+    current estimate (map -> moving image; ``initial`` the first time), find
+    every window's sub-pixel shift by phase correlation, and compose: the
+    feature at reference position p is at p - shift on the resampled grid,
+    hence at ``estimate(map(p - shift))`` in the moving image. A window
+    measures a translation only, so with a rotation or scale change left in
+    the estimate one pass is biased; the next pass starts from the model the
+    reliable tie points give, until the shifts are (almost) zero.
+
+    A window is rejected (its GCP disabled, the reason in ``notes``) when it
+    is outside the moving image or masked by ``valid`` ("invalid"), constant
+    ("constant"), of low contrast ("low contrast": water, cloud, a
+    featureless field), has a weak correlation peak ("weak peak") or
+    disagrees with a RANSAC fit of ``kind`` to the others by more than
+    ``tolerance`` pixels ("outlier"): the idea of AROSICS's tie-point filters,
+    from the correlation peak's reliability to RANSAC outlier detection.
+
+    Parameters
+    ----------
+    reference : (rows, cols) array_like
+        The reference image, on the grid of ``reference_transform``.
+    moving : (rows, cols) array_like
+        The image to register (any size and pixel size).
+    spacing, window : int
+        Distance between window centres and side of each window, reference
+        pixels.
+    reference_transform : affine.Affine, optional
+        Reference pixel -> map; by default map coordinates are the
+        reference's pixel coordinates.
+    initial : callable or affine.Affine, optional
+        First estimate, map -> moving (col, row), e.g. ``~moving_transform``
+        from the moving file's own (approximate) georeferencing; by default
+        the moving image is taken to be on the reference grid.
+    kind, order
+        The global model (:func:`rsgeo.gcp.fit_transform`) of the outlier
+        test and of each pass's estimate.
+    iterations : int
+        Passes at most (1 = a single pass on the first estimate).
+    upsample : int
+        Sub-pixel precision of each shift: 1 / upsample pixel.
+    min_contrast : float
+        Smallest standard deviation of a window (DN).
+    min_reliability : float
+        Smallest height of the correlation peak above the rest of the
+        correlation surface, in its standard deviations.
+    tolerance : float
+        Outlier threshold, moving-image pixels.
+    valid : (rows, cols) array_like of bool, optional
+        False for reference pixels not to use (clouds, water).
+    method : {"nearest", "bilinear", "cubic"}
+        Resampling of the moving image.
+    taper : bool
+        Hann-tapered cross-correlation (:func:`rsgeo.gcp.measure_shifts`'s
+        ``taper``): no pull towards zero shift from the windows' cut edges.
+    seed : int
+        Seed of the RANSAC outlier test.
+
+    Returns
+    -------
+    GCPSet
+        One GCP per window (map x, y of the window centre; its position in
+        the moving image), ``enabled`` for the reliable ones, ``notes`` with
+        each rejection's reason. Extra attributes: ``reliability`` (a table
+        of peak, reliability, error, contrast and the shift of the last pass
+        per window) and ``passes`` (per pass: reliable points and median
+        length of the shifts, in pixels).
+
+    Raises
+    ------
+    ValueError
+        If an image is not 2-D, holds NaN, the window is larger than the
+        reference, the first estimate puts the moving image nowhere on the
+        reference grid (no overlap), or fewer reliable tie points remain
+        than the model needs (the message counts each rejection reason).
+    """
+    reference = as_image(reference, "reference").astype(np.float64)
+    moving = as_image(moving, "moving").astype(np.float64)
+    for name, image in (("reference", reference), ("moving", moving)):
+        if image.ndim != 2:
+            raise ValueError(f"{name} must be one band (2-D), got shape {image.shape}")
+        if not np.isfinite(image).all():
+            raise ValueError(f"{name} holds NaN or infinite values; fill them and mark them "
+                             "with valid=False")
+    check_choice(method, "method", ("nearest", "bilinear", "cubic"))
+    iterations = int(check_range(iterations, "iterations", 1, None, "a number of passes"))
+    transform = _transform(reference_transform)
+    estimate = ~transform if initial is None else initial
+    if valid is None:
+        valid = np.ones(reference.shape, bool)
+    else:
+        valid = np.asarray(valid, dtype=bool)
+        if valid.shape != reference.shape:
+            raise ValueError(f"valid must have the reference's shape {reference.shape}, got "
+                             f"{valid.shape}")
+    needed = ransac_model(kind, order).min_samples
+    passes = []
+    for _ in range(iterations):
+        try:
+            resampled = resample.warp(moving, estimate, reference.shape, transform,
+                                      method=method, nodata=np.nan)
+        except ValueError as error:
+            if "lands inside" not in str(error):
+                raise
+            resampled = np.full(reference.shape, np.nan)
+        inside = np.isfinite(resampled)
+        if not inside.any():
+            raise ValueError("the images do not overlap: the estimate puts no reference pixel "
+                             "inside the moving image; give an initial estimate (map -> moving "
+                             "image) that roughly aligns them")
+        with _one_blas_thread():
+            points, shifts, table = gcp.measure_shifts(
+                reference, np.where(inside, resampled, 0.0), spacing, window, upsample, taper,
+                valid=valid & inside, details=True)
+        table["dcol"], table["drow"] = shifts[:, 0], shifts[:, 1]
+        reason = table["skipped"].to_numpy(dtype=object)
+        reason[(reason == "") & (table["contrast"] < min_contrast)] = "low contrast"
+        reason[(reason == "") & (table["reliability"] < min_reliability)] = "weak peak"
+        map_xy = _to_map(transform, points)
+        image_xy = np.full(points.shape, np.nan)
+        good = reason == ""
+        if good.any():
+            image_xy[good] = _apply(estimate, _to_map(transform, points[good] - shifts[good]))
+        if good.sum() >= needed:
+            model, inliers = robust_fit(map_xy[good], image_xy[good], kind, order, tolerance,
+                                        seed=seed)
+            outliers = np.flatnonzero(good)[~inliers]
+            reason[outliers] = "outlier"
+            good = reason == ""
+        passes.append({"reliable": int(good.sum()),
+                       "median shift (px)": float(np.median(np.hypot(*shifts[good].T)))
+                       if good.any() else np.nan})
+        if good.sum() < needed:
+            counts = ", ".join(f"{n} {r}" for r, n in zip(*np.unique(
+                reason[reason != ""].astype(str), return_counts=True)))
+            what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
+            raise ValueError(f"{good.sum()} reliable tie points of {len(points)} windows "
+                             f"({counts or 'none rejected'}); {what} needs at least {needed}: "
+                             "use smaller spacing, larger windows or a better initial estimate")
+        estimate = gcp.fit_transform(map_xy[good], image_xy[good], kind, order)
+        if passes[-1]["median shift (px)"] < 0.5 / upsample:
+            break
+    table["reason"] = reason
+    image_xy[~good] = np.nan_to_num(image_xy[~good], nan=-1.0)
+    gcps = gcp.GCPSet(map_xy, image_xy, enabled=good,
+                      ids=[f"W{k + 1:02d}" for k in range(len(points))],
+                      notes=[r or "reliable" for r in reason])
+    gcps.reliability = table
+    gcps.passes = passes
+    return gcps
+
+
+def _keypoints(image, detector, n_keypoints, seed):
+    from skimage.feature import ORB, SIFT
+
+    scaled = (image - image.min()) / ((image.max() - image.min()) or 1.0)
+    if detector == "sift":
+        extractor = SIFT()
+    else:
+        extractor = ORB(n_keypoints=n_keypoints, fast_threshold=0.05)
+    extractor.detect_and_extract(scaled)
+    # scikit-image's (row, col) has pixel centres at whole numbers; GDAL's at halves
+    return extractor.keypoints[:, ::-1] + 0.5, extractor.descriptors
+
+
+def feature_tiepoints(reference, moving, detector="sift", reference_transform=None,
+                      kind="polynomial", order=1, threshold=1.0, max_ratio=0.8, n_keypoints=2000,
+                      max_trials=2000, seed=0):
+    """Tie points from keypoints: detect, match descriptors, keep the RANSAC inliers.
+
+    Keypoints and descriptors by scikit-image's ``SIFT`` (Lowe 2004; scale-
+    and rotation-invariant) or ``ORB`` (Rublee et al. 2011; binary, fast);
+    matches by ``match_descriptors`` (mutual nearest neighbours with Lowe's
+    ratio test); then ``skimage.measure.ransac`` with an rsgeo model
+    (:func:`ransac_model`) from the reference's map coordinates to the moving
+    image. No initial estimate is needed.
+
+    Parameters
+    ----------
+    reference, moving : (rows, cols) array_like
+        The two images (any sizes and pixel sizes).
+    detector : {"sift", "orb"}
+    reference_transform : affine.Affine, optional
+        Reference pixel -> map; by default the reference's pixel coordinates.
+    kind, order
+        The model RANSAC fits (:func:`rsgeo.gcp.fit_transform`).
+    threshold : float
+        RANSAC's inlier threshold, moving-image pixels.
+    max_ratio : float
+        Lowe's ratio test: a match is kept if its distance is under this
+        fraction of the second best's.
+    n_keypoints : int
+        Keypoints ORB keeps (SIFT keeps all it finds).
+    max_trials : int
+        RANSAC's random samples.
+    seed : int
+        Seed of RANSAC's sampling.
+
+    Returns
+    -------
+    GCPSet
+        The inliers: map (x, y) of the reference keypoint, (col, row) of the
+        moving one. Extra attributes: ``n_keypoints`` (reference, moving),
+        ``n_matches`` (before RANSAC) and ``candidates`` (every match, as a
+        GCPSet whose ``enabled`` flags the inliers).
+
+    Raises
+    ------
+    ValueError
+        If an image is not 2-D or is constant (no keypoint), the detector is
+        unknown, or fewer matches than the model needs survive (the message
+        says how many keypoints and matches were found).
+    """
+    from skimage.feature import match_descriptors
+
+    check_choice(detector, "detector", DETECTORS)
+    images = []
+    for name, image in (("reference", reference), ("moving", moving)):
+        image = as_image(image, name).astype(np.float64)
+        if image.ndim != 2:
+            raise ValueError(f"{name} must be one band (2-D), got shape {image.shape}")
+        if not np.isfinite(image).all() or image.std() == 0:
+            raise ValueError(f"{name} is constant or holds NaN: no keypoint can be found in it")
+        images.append(image)
+    check_range(max_ratio, "max_ratio", 0, 1, "a ratio of descriptor distances")
+    transform = _transform(reference_transform)
+    found = []
+    for image in images:
+        try:
+            found.append(_keypoints(image, detector, int(n_keypoints), seed))
+        except RuntimeError:   # ORB: too few keypoints
+            found.append((np.empty((0, 2)), np.empty((0, 32), bool)))
+    (ref_xy, ref_desc), (mov_xy, mov_desc) = found
+    needed = ransac_model(kind, order).min_samples
+    if len(ref_xy) and len(mov_xy):
+        matches = match_descriptors(ref_desc, mov_desc, cross_check=True, max_ratio=max_ratio)
+    else:
+        matches = np.empty((0, 2), int)
+    if len(matches) < needed:
+        raise ValueError(f"{detector.upper()} found {len(ref_xy)} and {len(mov_xy)} keypoints "
+                         f"and {len(matches)} matches; the {kind} model needs at least "
+                         f"{needed}: the images may not overlap or may look too different")
+    map_xy = _to_map(transform, ref_xy[matches[:, 0]])
+    image_xy = mov_xy[matches[:, 1]]
+    _, inliers = robust_fit(map_xy, image_xy, kind, order, threshold, max_trials, seed)
+    gcps = gcp.GCPSet(map_xy[inliers], image_xy[inliers],
+                      ids=[f"{detector.upper()}{k + 1:03d}" for k in range(int(inliers.sum()))])
+    gcps.n_keypoints = (len(ref_xy), len(mov_xy))
+    gcps.n_matches = len(matches)
+    gcps.candidates = gcp.GCPSet(map_xy, image_xy, enabled=inliers)
+    return gcps
+
+
+@dataclass
+class Registration:
+    """The outcome of :func:`register`.
+
+    Attributes
+    ----------
+    model : GeometricModel
+        Map -> image, fitted on the kept GCPs.
+    kept : ndarray of bool
+        GCPs (of the enabled ones) that survived refinement.
+    rms_all, rms_kept : float
+        Lecture's RMS (pixels) of the model fitted on all enabled GCPs, and of
+        the refined model on the kept ones.
+    """
+
+    model: object
+    kept: np.ndarray
+    rms_all: float
+    rms_kept: float
+
+
+def register(gcps, kind="polynomial", order=1, tolerance=1.0, min_gcps=None):
+    """The shared pipeline's last steps: GCPSet -> model -> refinement, like ``gdalwarp -refine_gcps``.
+
+    Whatever found the GCPs (a human, the GA paper's matched regions,
+    correlation, features), the model is fitted the same way: on the enabled
+    GCPs, then the worst GCP is dropped while its residual is over
+    ``tolerance`` (:func:`rsgeo.gcp.refine_gcps` for polynomials; the same
+    loop on :func:`rsgeo.gcp.fit_transform` for the other kinds).
+
+    Parameters
+    ----------
+    gcps : GCPSet
+        Map (x, y) and image (col, row); disabled GCPs are left out.
+    kind, order
+        As :func:`rsgeo.gcp.fit_transform`.
+    tolerance : float
+        Refinement tolerance, image pixels.
+    min_gcps : int, optional
+        Fewest GCPs refinement keeps; default the model's minimum.
+
+    Returns
+    -------
+    Registration
+        ``kept`` has one flag per enabled GCP.
+
+    Raises
+    ------
+    ValueError
+        If ``gcps`` is not a GCPSet, or as :func:`rsgeo.gcp.fit_transform`
+        and :func:`rsgeo.gcp.refine_gcps` (too few GCPs, a negative tolerance).
+
+    Examples
+    --------
+    >>> map_xy = np.array([[0, 0], [100, 0], [0, 100], [100, 100], [50, 50]], dtype=float)
+    >>> image_xy = map_xy / 10
+    >>> image_xy[4] += 3                                   # one bad GCP
+    >>> result = register(gcp.GCPSet(map_xy, image_xy), tolerance=1.0)
+    >>> result.kept.tolist(), round(result.rms_kept, 6)
+    ([True, True, True, True, False], 0.0)
+    """
+    if not isinstance(gcps, gcp.GCPSet):
+        raise ValueError(f"gcps must be a rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
+    map_xy, image_xy = gcps.map_xy[gcps.enabled], gcps.image_xy[gcps.enabled]
+    order = order if kind == "polynomial" else None
+    rms_all = gcp.fit_transform(map_xy, image_xy, kind, order).rms(map_xy, image_xy)
+    if kind == "polynomial":
+        model, kept = gcp.refine_gcps(map_xy, image_xy, order, tolerance, min_gcps)
+    else:
+        floor = gcp.min_gcps(kind)
+        min_gcps = floor if min_gcps is None else int(min_gcps)
+        if min_gcps < floor:
+            raise ValueError(f"min_gcps must be at least {floor} for {kind!r}, got {min_gcps}")
+        check_range(tolerance, "tolerance", 0, None, "a residual in pixels")
+        kept = np.ones(len(map_xy), bool)
+        model = gcp.fit_transform(map_xy, image_xy, kind)
+        while kept.sum() > min_gcps:
+            distance = model.residuals(map_xy[kept], image_xy[kept])
+            worst = int(np.argmax(distance))
+            if distance[worst] < tolerance:
+                break
+            kept[np.flatnonzero(kept)[worst]] = False
+            model = gcp.fit_transform(map_xy[kept], image_xy[kept], kind)
+    return Registration(model, kept, rms_all, model.rms(map_xy[kept], image_xy[kept]))
+
+
+def grid_error(model, truth, transform, shape, step=10):
+    """Check points on a grid: RMS distance between two map -> image models over an image's area.
+
+    The independent check of an automatic registration: on synthetic data
+    ``truth`` is the known mapping (``~moving_transform``); on real data it
+    can be another model (the hand-made GCPs'), and the result is how far
+    the two agree.
+
+    Parameters
+    ----------
+    model, truth : callable or affine.Affine
+        Map (x, y) -> image (col, row).
+    transform : affine.Affine
+        Pixel -> map of the grid the check points are taken on (usually the
+        reference's).
+    shape : (rows, cols)
+        That grid's size.
+    step : int
+        Every ``step``-th cell centre is a check point.
+
+    Returns
+    -------
+    float
+        RMS distance, in image pixels.
+
+    Raises
+    ------
+    ValueError
+        For a step that is not a positive whole number, a bad shape, or a
+        model that gives NaN.
+
+    Examples
+    --------
+    >>> import affine
+    >>> truth = affine.Affine.identity()
+    >>> model = affine.Affine.translation(0.3, 0.4)
+    >>> round(grid_error(model, truth, affine.Affine.identity(), (20, 20)), 6)
+    0.5
+    """
+    rows, cols = as_shape(shape)
+    if int(step) != step or step < 1:
+        raise ValueError(f"step must be a positive whole number of pixels, got {step!r}")
+    grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
+    map_xy = _to_map(transform, np.column_stack([grid_cols.ravel(), grid_rows.ravel()]))
+    difference = _apply(model, map_xy) - _apply(truth, map_xy)
+    if not np.isfinite(difference).all():
+        raise ValueError("a model gave NaN or infinite positions on the check grid")
+    return float(np.sqrt(np.mean(np.sum(difference**2, axis=1))))
+
+
+def coarsen(image, transform, factor):
+    """Average ``factor`` × ``factor`` blocks: a finer image seen at a coarser pixel size.
+
+    How the 2.5 m HRC is compared with the 20 m CCD (``factor=8``): each
+    block's mean approximates what the coarser sensor integrates over its
+    pixel. Rows and columns that do not fill a block are dropped.
+
+    Parameters
+    ----------
+    image : (rows, cols) array_like
+    transform : affine.Affine
+        The image's pixel -> map geotransform.
+    factor : int
+        Block side, pixels.
+
+    Returns
+    -------
+    blocks : ndarray, shape (rows // factor, cols // factor)
+    block_transform : affine.Affine
+        Pixel -> map of the blocks.
+
+    Raises
+    ------
+    ValueError
+        If the image is not 2-D or the factor is not a whole number from 1
+        to the image's smaller side.
+
+    Examples
+    --------
+    >>> import affine
+    >>> blocks, t = coarsen(np.arange(16.0).reshape(4, 4), affine.Affine(2.5, 0, 0, 0, -2.5, 10), 2)
+    >>> blocks.tolist(), t.a
+    ([[2.5, 4.5], [10.5, 12.5]], 5.0)
+    """
+    import affine
+
+    image = as_image(image, "image").astype(np.float64)
+    if image.ndim != 2:
+        raise ValueError(f"image must be one band (2-D), got shape {image.shape}")
+    if int(factor) != factor or not 1 <= factor <= min(image.shape):
+        raise ValueError(f"factor must be a whole number from 1 to {min(image.shape)}, "
+                         f"got {factor!r}")
+    factor = int(factor)
+    rows, cols = (n // factor * factor for n in image.shape)
+    blocks = image[:rows, :cols].reshape(rows // factor, factor, cols // factor, factor)
+    return blocks.mean(axis=(1, 3)), transform @ affine.Affine.scale(factor)
+
+
+def perturb_transform(transform, shift=(0.0, 0.0), degrees=0.0, centre=None):
+    """A geotransform moved by ``shift`` and turned by ``degrees`` about ``centre``: an approximate
+    georeferencing, as a first estimate for :func:`correlation_tiepoints`.
+
+    Parameters
+    ----------
+    transform : affine.Affine
+        Pixel -> map.
+    shift : (float, float)
+        Map units added to every mapped point.
+    degrees : float
+        Rotation, counter-clockwise on the map.
+    centre : (float, float), optional
+        Map point the rotation turns about; default the map position of
+        pixel (0, 0).
+
+    Returns
+    -------
+    affine.Affine
+        Pixel -> map, perturbed.
+
+    Raises
+    ------
+    ValueError
+        If the transform is not an invertible affine.Affine, or a value is
+        not finite.
+
+    Examples
+    --------
+    >>> import affine
+    >>> moved = perturb_transform(affine.Affine.identity(), (3, 4), 90, centre=(0, 0))
+    >>> [round(v, 6) + 0.0 for v in moved @ (1, 0)]
+    [3.0, 5.0]
+    """
+    import affine
+
+    gcp._check_transform(transform, "transform")
+    values = [*np.ravel(shift), degrees] + ([] if centre is None else list(np.ravel(centre)))
+    if not np.isfinite(np.asarray(values, dtype=float)).all():
+        raise ValueError(f"shift, degrees and centre must be finite numbers, got {values}")
+    cx, cy = transform @ (0, 0) if centre is None else centre
+    return (affine.Affine.translation(*shift) @ affine.Affine.translation(cx, cy)
+            @ affine.Affine.rotation(degrees) @ affine.Affine.translation(-cx, -cy) @ transform)

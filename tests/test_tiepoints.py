@@ -1,0 +1,227 @@
+"""rsgeo.tiepoints: automatic tie points by correlation and by features (issue 18)."""
+
+import affine
+import numpy as np
+import pytest
+
+from rsgeo import data, gcp, matching, regions, resample, synthetic, tiepoints
+
+
+@pytest.fixture(scope="module")
+def land():
+    return synthetic.two_date_landscape()
+
+
+def perturbed(transform, shift, degrees, centre):
+    """``transform`` moved by ``shift`` (map units) and turned by ``degrees`` about ``centre``."""
+    return (affine.Affine.translation(*shift) @ affine.Affine.translation(*centre)
+            @ affine.Affine.rotation(degrees) @ affine.Affine.translation(-centre[0], -centre[1])
+            @ transform)
+
+
+@pytest.fixture(scope="module")
+def ccd_hrc():
+    ccd, hrc = data.load("cbers2b_rgb342"), data.load("cbers2b_hrc")
+    rows, cols = (n // 8 * 8 for n in hrc.shape)
+    blocks = hrc.array[:rows, :cols].astype(float).reshape(rows // 8, 8, cols // 8, 8).mean(
+        axis=(1, 3))
+    gcps = data.load_gcps("cbers2b_ccd_hrc")
+    hand, kept = gcp.refine_gcps(gcps.map_xy, gcps.image_xy, 1, 2.5)
+    loo = gcp.leave_one_out_errors(gcps.map_xy[kept], gcps.image_xy[kept], 1)
+    return ccd, blocks, hrc.transform @ affine.Affine.scale(8), hand, float(np.sqrt(np.mean(loo**2)))
+
+
+def test_robust_fit_drops_a_blunder_with_any_rsgeo_model():
+    rng = np.random.default_rng(0)
+    src = rng.uniform(0, 100, (30, 2))
+    dst = src * [1.5, -1.5] + [3, 400] + rng.normal(0, 0.05, src.shape)
+    dst[[4, 17]] += [25, -40]
+    for kind, order in (("polynomial", 1), ("helmert", None), ("projective", None)):
+        model, inliers = tiepoints.robust_fit(src, dst, kind, order, threshold=0.5)
+        assert inliers.sum() == 28 and not inliers[[4, 17]].any()
+        assert model.rms(src[inliers], dst[inliers]) < 0.1
+
+
+def test_correlation_recovers_a_pure_translation_with_the_right_sign(land):
+    image = land.reference.astype(float)
+    shift = np.array([2.3, -1.7])                     # moving(c, r) = image(c - 2.3, r + 1.7)
+    moving = resample.warp(image, affine.Affine.translation(*-shift), image.shape,
+                           method="cubic", nodata=0)
+    valid = np.zeros(image.shape, bool)
+    valid[20:-20, 20:-20] = True
+    medians = {}
+    for passes in (1, 6):
+        gcps = tiepoints.correlation_tiepoints(image, moving, 48, 64, iterations=passes,
+                                               valid=valid)
+        offsets = gcps.image_xy[gcps.enabled] - gcps.map_xy[gcps.enabled]
+        medians[passes] = np.median(offsets, axis=0)
+        assert gcps.enabled.sum() >= 30
+    # one pass is pulled towards whole pixels ("pixel locking"); passes on the resampled
+    # image measure ever smaller shifts, where that pull is ever smaller
+    assert np.abs(medians[1] - shift).max() > 0.1
+    np.testing.assert_allclose(medians[6], shift, atol=0.05)
+
+
+def test_correlation_iterations_remove_the_single_pass_bias(land):
+    truth = ~land.adjustment_transform
+    centre = land.adjustment_transform @ (106.5, 106.5)
+    initial = ~perturbed(land.adjustment_transform, (60, -45), 1.0, centre)
+    errors = {}
+    for passes in (1, 4):
+        gcps = tiepoints.correlation_tiepoints(land.reference, land.adjustment, 32, 64,
+                                               land.reference_transform, initial=initial,
+                                               iterations=passes)
+        model = tiepoints.register(gcps).model
+        errors[passes] = tiepoints.grid_error(model, truth, land.adjustment_transform,
+                                              land.adjustment.shape)
+    # with the landscape centred (no 5 m offset in the reference): 0.15 px after 4 passes,
+    # 0.18 px after one, which keeps fewer windows under the 1 degree rotation
+    assert errors[4] < min(0.2, errors[1])
+    assert set(gcps.notes) <= {"reliable", "invalid", "outlier", "weak peak", "low contrast"}
+    assert gcps.reliability["reliability"][gcps.enabled].min() >= 8.0
+
+
+def test_features_and_correlation_reproduce_the_hand_made_gcps_on_the_real_pair(ccd_hrc):
+    ccd, blocks, transform, hand, loo = ccd_hrc
+    green = ccd.array[2].astype(float)
+    by_features = tiepoints.feature_tiepoints(blocks, green, "sift", transform)
+    by_correlation = tiepoints.correlation_tiepoints(blocks, ccd.array[0], 32, 64, transform,
+                                                     initial=~ccd.transform)
+    for gcps in (by_features, by_correlation):
+        model = tiepoints.register(gcps).model
+        assert tiepoints.grid_error(model, hand, transform, blocks.shape) < loo
+    assert len(by_features) >= 50 and by_features.n_matches >= len(by_features)
+
+
+def test_feature_tiepoints_map_coordinates_follow_the_reference_transform(land):
+    # the same image twice, with a known transform: every inlier obeys it to a fraction of a pixel
+    reference = land.reference.astype(float)
+    gcps = tiepoints.feature_tiepoints(reference, reference, "orb", land.reference_transform,
+                                       threshold=0.5)
+    expected = np.column_stack((~land.reference_transform) @ tuple(gcps.map_xy.T))
+    np.testing.assert_allclose(gcps.image_xy, expected, atol=0.5)
+    assert len(gcps) > 50
+
+
+def test_register_refines_other_kinds_like_gdal():
+    map_xy = np.array([[0, 0], [100, 0], [0, 100], [100, 100], [50, 50], [20, 70]], float)
+    image_xy = map_xy[:, ::-1] / 10 + 5
+    image_xy[4] += [2, 2]
+    result = tiepoints.register(gcp.GCPSet(map_xy, image_xy), "projective", tolerance=0.5)
+    assert result.kept.tolist() == [True, True, True, True, False, True]
+    assert result.rms_kept < 1e-9 < result.rms_all
+    # disabled GCPs are left out of the fit
+    disabled = gcp.GCPSet(map_xy, image_xy, enabled=[True, True, True, True, False, True])
+    assert tiepoints.register(disabled, tolerance=0.5).rms_all < 1e-9
+
+
+def test_register_by_regions_runs_the_shared_pipeline(land):
+    reference = regions.forest_segments(land.reference, threshold=185)
+    adjustment = regions.forest_segments(land.adjustment, threshold=185)
+    paper = matching.register_by_regions(reference, adjustment, land.reference_transform, 20, 30,
+                                         seed=1)
+    shared = tiepoints.register(gcp.GCPSet(paper.map_xy, paper.image_xy), tolerance=1.0,
+                                min_gcps=4)
+    np.testing.assert_array_equal(paper.kept, shared.kept)
+    assert paper.rms_kept == shared.rms_kept and paper.rms_all == shared.rms_all
+
+
+def test_measure_shifts_details_report_every_window():
+    rng = np.random.default_rng(1)
+    image = rng.normal(100, 20, (128, 128))
+    image[:64, :64] = 50.0                                # a constant quarter
+    valid = np.ones(image.shape, bool)
+    valid[100:, 100:] = False
+    points, shifts = gcp.measure_shifts(image, image, step=64, window=64)
+    all_points, all_shifts, table = gcp.measure_shifts(image, image, step=64, window=64,
+                                                       valid=valid, details=True)
+    assert len(points) == 3 and len(all_points) == 4
+    assert table["skipped"].tolist() == ["constant", "", "", "invalid"]
+    assert np.isnan(all_shifts[[0, 3]]).all() and np.allclose(all_shifts[1:3], 0)
+    assert (table["peak"][1:3] > 0.99).all()
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda land: tiepoints.correlation_tiepoints(
+        land.reference, land.adjustment, 32, 64, land.reference_transform,
+        initial=~affine.Affine(30, 0, 90_000, 0, -30, 90_000)), "do not overlap"),
+    (lambda land: tiepoints.correlation_tiepoints(np.full((128, 128), 7.0),
+                                                  np.full((128, 128), 7.0), 32, 64),
+     "0 reliable tie points of 9 windows \\(9 constant\\)"),
+    (lambda land: tiepoints.correlation_tiepoints(land.reference, land.reference, 32, 64,
+                                                  min_contrast=1e6), "low contrast"),
+    (lambda land: tiepoints.correlation_tiepoints(land.reference, land.reference[None], 32, 64),
+     "2-D"),
+    (lambda land: tiepoints.feature_tiepoints(land.reference, np.zeros((50, 50))), "constant"),
+    (lambda land: tiepoints.feature_tiepoints(land.reference, land.adjustment, "surf"),
+     "unknown detector"),
+    (lambda land: tiepoints.robust_fit([[0, 0], [1, 1]], [[0, 0], [1, 1]]), "at least 3"),
+    (lambda land: tiepoints.register("not gcps"), "GCPSet"),
+    (lambda land: tiepoints.grid_error(affine.Affine.identity(), affine.Affine.identity(),
+                                       affine.Affine.identity(), (5, 5), step=0), "step"),
+])
+def test_bad_input_says_what_was_found_and_what_is_needed(land, call, message):
+    with pytest.raises(ValueError, match=message):
+        call(land)
+
+
+# -- the exercise checks of chapter 6c (rsgeo.exercises) ---------------------
+
+def test_keypoint_check_recognises_the_convention_mistakes():
+    from rsgeo import exercises
+
+    assert exercises.check_keypoint_position((20.5, 10.5), (10, 20))
+    for answer, hint in (((20, 10), "Half a pixel is missing"), ((10, 20), "swapped"),
+                         ((10.5, 20.5), "swapped"), ((19.5, 9.5), "other way")):
+        verdict = exercises.check_keypoint_position(answer, (10, 20))
+        assert not verdict and hint in verdict.hint
+    with pytest.raises(exercises.ExerciseNotSolved):
+        exercises.check_keypoint_position(..., (10, 20))
+    assert "two numbers" in exercises.check_keypoint_position("20.5, 10.5", (10, 20)).message
+
+
+def test_composed_tiepoint_check_recognises_sign_order_and_missing_steps():
+    from rsgeo import exercises
+
+    to_map = affine.Affine(20, 0, 1000, 0, -20, 5000)
+    estimate = ~(to_map @ affine.Affine.scale(1.5) @ affine.Affine.rotation(3))
+    centre, shift = np.array([40.0, 30.0]), (1.5, -2.5)           # (drow, dcol)
+    right = estimate @ (to_map @ tuple(centre - [-2.5, 1.5]))
+    assert exercises.check_composed_tiepoint(right, centre, shift, estimate, to_map)
+    wrong = {"not plus": estimate @ (to_map @ tuple(centre + [-2.5, 1.5])),
+             "rows first": estimate @ (to_map @ tuple(centre - [1.5, -2.5])),
+             "reference grid": tuple(centre - [-2.5, 1.5]),
+             "map first": estimate @ tuple(centre - [-2.5, 1.5])}
+    for hint, answer in wrong.items():
+        verdict = exercises.check_composed_tiepoint(answer, centre, shift, estimate, to_map)
+        assert not verdict and hint in verdict.hint, (hint, verdict)
+
+
+def test_check_point_error_check_knows_the_mean_the_2n_and_metres(land):
+    from rsgeo import exercises
+
+    truth = ~land.adjustment_transform
+    model = affine.Affine.translation(0.3, -0.2) @ affine.Affine.rotation(0.2) @ truth
+    args = (model, truth, land.adjustment_transform, land.adjustment.shape)
+    expected = tiepoints.grid_error(*args)
+    assert exercises.check_check_point_error(expected, *args, pixel_size=30)
+    for answer, hint in ((expected / np.sqrt(2), "2n"), (30 * expected, "map units")):
+        verdict = exercises.check_check_point_error(answer, *args, pixel_size=30)
+        assert not verdict and hint in verdict.hint
+        assert f"{expected:.3g}" not in verdict.message          # never the expected value
+
+
+def test_blas_threads_are_restored_after_correlation():
+    import ctypes
+
+    paths = sorted({line.split()[-1] for line in open("/proc/self/maps") if "openblas" in line})
+    if not paths:
+        pytest.skip("NumPy is not linked to OpenBLAS here")
+    library = ctypes.CDLL(paths[0])
+    get = getattr(library, "scipy_openblas_get_num_threads64_", None)
+    if get is None:
+        pytest.skip("not scipy-openblas")
+    before = get()
+    with tiepoints._one_blas_thread():
+        assert get() == 1
+    assert get() == before
