@@ -11,8 +11,12 @@ One module per topic of the course:
 - :mod:`rsgeo.georef` - CRSs and datums (SAD69 -> SIRGAS 2000) through PROJ, and a complete
   georeferencing run, ``georeference`` (chapter 2b);
 - :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4);
+- :mod:`rsgeo.terrain` - relief displacement, RPCs fitted to a sensor, orthorectification with a
+  DEM (chapter 4b);
 - :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
 - :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm (chapter 6, the GA paper);
+- :mod:`rsgeo.tiepoints` - automatic tie points by correlation and by features, and the
+  registration pipeline they share with the GA (chapter 6c);
 - :mod:`rsgeo.experiments` - the experiment harness behind chapter 6's saved tables (success rates, certified optima);
 - :mod:`rsgeo.exercises` - checks for the exercises;
 - :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets on top of the maths.

@@ -21,13 +21,18 @@ A check judges an answer in this order:
    task's general hint.
 """
 
+import ast
 import html
+import inspect
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import distortion, gcp, georef, radiometry, resample
+from . import terrain
+from . import tiepoints
 from ._checks import as_points, as_shape
+from ._i18n import _
 from .matching import BITS_PER_GENE, decode, fitness
 
 __all__ = [
@@ -38,6 +43,9 @@ __all__ = [
     "check_suboptimal_segment", "check_datum_shift_pixels",
     "check_helmert", "check_projective_matrix", "check_model_choice",
     "check_output_pixel_size", "check_grid_extent",
+    "recognised_mistakes",
+    "check_displacement", "check_height_budget", "check_rpc_position",
+    "check_keypoint_position", "check_composed_tiepoint", "check_check_point_error",
 ]
 
 
@@ -63,14 +71,17 @@ class Verdict:
     def __bool__(self):
         return self.ok
 
+    # the labels speak the course's language (rsgeo._i18n: RSGEO_LANG=pt_BR gives "Correto")
     def __repr__(self):
         if self.ok:
-            return f"Correct: {self.message}"
-        return f"Not yet: {self.message}" + (f"\nHint: {self.hint}" if self.hint else "")
+            return _("Correct") + f": {self.message}"
+        hint = "\n" + _("Hint") + f": {self.hint}" if self.hint else ""
+        return _("Not yet") + f": {self.message}" + hint
 
     def _repr_html_(self):
-        colour, title = ("#1a7f37", "Correct") if self.ok else ("#b35900", "Not yet")
-        hint = f"<br><em>Hint:</em> {html.escape(self.hint)}" if (self.hint and not self.ok) else ""
+        colour, title = ("#1a7f37", _("Correct")) if self.ok else ("#b35900", _("Not yet"))
+        hint = ("<br><em>" + _("Hint") + f":</em> {html.escape(self.hint)}"
+                if (self.hint and not self.ok) else "")
         return (f'<div class="rsgeo-verdict" style="border-left:4px solid {colour};padding:4px 8px">'
                 f"<strong>{title}:</strong> {html.escape(self.message)}{hint}</div>")
 
@@ -1651,3 +1662,462 @@ def check_model_choice(model, src, dst, is_check):
                      "stay out of the fit.")
     return Verdict(False, f"{model} has a check-point RMS of {check[model]:.2f} px; another "
                           "model does better on the check points.", " ".join(hints) or generic)
+
+
+# -- For instructors: what each check recognises -------------------------------
+
+def _hint_text(node, strings):
+    """The text of a hint expression (a string, an f-string, a sum of them, a name bound to one,
+    ``_("...")``), with f-string fields shown as ``{expression}``; None for anything else."""
+    if isinstance(node, ast.Constant) and isinstance(node.value, str):
+        return node.value
+    if isinstance(node, ast.JoinedStr):
+        return "".join(part.value if isinstance(part, ast.Constant)
+                       else strings.get(getattr(part.value, "id", None),
+                                        "{" + ast.unparse(part.value) + "}")
+                       for part in node.values)
+    if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
+        left, right = _hint_text(node.left, strings), _hint_text(node.right, strings)
+        return None if left is None or right is None else left + right
+    if isinstance(node, ast.Name):
+        return strings.get(node.id)
+    if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id == "_"
+            and len(node.args) == 1):
+        return _hint_text(node.args[0], strings)
+    return None
+
+
+def recognised_mistakes(check):
+    """The hints a check gives: for each mistake it recognises, and its general hint.
+
+    Read from the check's own source, so a list made from it (the teaching guide's table)
+    stays true when a check learns a new mistake. A hint is the text paired with a
+    mistake's wrong value (``(wrong, hint)``), the hint of a ``Verdict(False, ...)`` or a
+    form error, or the general hint (passed to the judging helper or named ``generic``).
+
+    Parameters
+    ----------
+    check : str or callable
+        A check of this module, e.g. ``"check_rms"`` or :func:`check_rms`.
+
+    Returns
+    -------
+    list of (str, str)
+        ``(kind, hint)`` pairs in the order of the source, each hint once; ``kind`` is
+        ``"mistake"`` or ``"general"``. f-string fields appear as ``{expression}``.
+
+    Raises
+    ------
+    ValueError
+        If ``check`` is not one of this module's ``check_...`` functions.
+
+    Examples
+    --------
+    >>> hints = recognised_mistakes("check_skew")
+    >>> ("mistake", "That looks like metres; the check wants kilometres.") in hints
+    True
+    >>> [kind for kind, hint in hints].count("general")
+    1
+    """
+    name = getattr(check, "__name__", check)
+    checks = [entry for entry, value in globals().items()
+              if entry.startswith("check_") and inspect.isfunction(value)]
+    if name not in checks:
+        raise ValueError(f"{check!r} is not a check of rsgeo.exercises; it needs one of "
+                         f"{', '.join(checks)}")
+    tree = ast.parse(inspect.getsource(globals()[name]))
+    helpers = {node.func.id for node in ast.walk(tree) if isinstance(node, ast.Call)
+               and isinstance(node.func, ast.Name) and node.func.id.startswith("_")
+               and inspect.isfunction(globals().get(node.func.id))}
+    for helper in sorted(helpers):              # the private helpers it calls, one level down
+        tree.body += ast.parse(inspect.getsource(globals()[helper])).body
+    strings = {key: value for key, value in globals().items() if isinstance(value, str)}
+    for node in ast.walk(tree):                 # local names bound to a hint's text
+        if (isinstance(node, ast.Assign) and len(node.targets) == 1
+                and isinstance(node.targets[0], ast.Name)):
+            text = _hint_text(node.value, strings)
+            if text is not None:
+                strings[node.targets[0].id] = text
+    found = []
+
+    def add(kind, node):
+        text = _hint_text(node, strings)
+        if text and len(text) > 20 and text not in [hint for _kind, hint in found]:
+            found.append((kind, text))
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "") == "generic":
+            add("general", node.value)
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+              and node.func.attr == "append" and len(node.args) == 1):
+            add("mistake", node.args[0])
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name):
+            arguments = {keyword.arg: keyword.value for keyword in node.keywords}
+            if node.func.id == "_judge" and len(node.args) >= 5:
+                add("general", node.args[4])
+            elif node.func.id in ("Verdict", "_WrongForm"):
+                hint = node.args[2 if node.func.id == "Verdict" else 1:][:1] or [
+                    arguments.get("hint")]
+                if hint[0] is not None and not (isinstance(hint[0], ast.Name)
+                                                and hint[0].id == "generic"):
+                    add("mistake", hint[0])
+        elif (isinstance(node, ast.Tuple) and len(node.elts) == 2
+              and _hint_text(node.elts[0], {}) is None):
+            add("mistake", node.elts[1])
+    return found
+
+
+# -- Chapter 4b: relief displacement and RPCs ---------------------------------
+
+def check_displacement(displacement_m, height_m, view_zenith_deg):
+    """Relief displacement by hand: a point ``height_m`` high seen at ``view_zenith_deg``.
+
+    Parameters
+    ----------
+    displacement_m : float
+        The student's answer, in metres on the ground.
+    height_m : float
+        Height of the point above the datum (m).
+    view_zenith_deg : float
+        View zenith angle (degrees).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``displacement_m`` is still ``...``.
+
+    Examples
+    --------
+    >>> check_displacement(100.0, 100.0, 45.0)
+    Correct: `displacement_m` = 100 m.
+    """
+    expected = terrain.relief_displacement(height_m, view_zenith_deg)
+    angle = np.radians(view_zenith_deg)
+    mistakes = [
+        (_quiet(lambda: height_m * np.tan(view_zenith_deg)),
+         "np.tan takes radians: np.tan(25) is the tangent of 25 radians. Convert the angle "
+         "with np.radians first."),
+        (height_m * np.sin(angle), "That is h·sin θ; the displacement is h·tan θ (the "
+                                   "horizontal leg of a triangle whose vertical leg is h)."),
+        (height_m * np.cos(angle), "That is h·cos θ; the displacement is h·tan θ."),
+        (_quiet(lambda: height_m / np.tan(angle)), "You divided by tan θ; multiply: d = h·tan θ."),
+        (height_m * np.tan(angle) / 1000, "Give the answer in metres, not kilometres."),
+    ]
+    return _judge(displacement_m, "displacement_m", expected, 5e-3,
+                  "The line of sight leans θ from the vertical: over a height h it moves "
+                  "h·tan θ sideways (np.tan takes radians).", mistakes, units=" m")
+
+
+def check_height_budget(height_error_m, position_error_m, view_zenith_deg):
+    """The DEM height error that a horizontal position budget allows at a view zenith angle.
+
+    Parameters
+    ----------
+    height_error_m : float
+        The student's answer (m).
+    position_error_m : float
+        The allowed horizontal error (m).
+    view_zenith_deg : float
+        View zenith angle (degrees).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``height_error_m`` is still ``...``.
+
+    Examples
+    --------
+    >>> check_height_budget(10.0, 10.0, 45.0)
+    Correct: `height_error_m` = 10 m.
+    """
+    expected = terrain.height_error_budget(position_error_m, view_zenith_deg)
+    angle = np.radians(view_zenith_deg)
+    mistakes = [
+        (position_error_m * np.tan(angle), "You multiplied by tan θ: a height error Δh moves the "
+                                           "point Δh·tan θ, so divide the budget by tan θ."),
+        (_quiet(lambda: position_error_m / np.tan(view_zenith_deg)),
+         "np.tan takes radians: convert the angle with np.radians first."),
+        (position_error_m / np.sin(angle), "That divides by sin θ; the displacement is Δh·tan θ, "
+                                           "so divide by tan θ."),
+    ]
+    return _judge(height_error_m, "height_error_m", expected, 5e-3,
+                  "Solve Δx = Δh·tan θ for Δh.", mistakes, units=" m")
+
+
+def _two_numbers(answer, name):
+    answer = _require(answer, name)
+    if isinstance(answer, (str, bytes)):
+        raise _WrongForm(f"`{name}` is text; the check needs two numbers (col, row).")
+    try:
+        array = np.asarray(answer, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise _WrongForm(f"`{name}` is not two numbers (col, row).") from None
+    if array.size != 2:
+        raise _WrongForm(f"`{name}` holds {array.size} value(s); the check needs two, (col, row).")
+    if not np.isfinite(array).all():
+        raise _WrongForm(f"`{name}` holds NaN or infinite values.")
+    return array
+
+
+def check_rpc_position(position, rpc_mapping, lon, lat, height):
+    """Reading an RPC: the image (col, row) of a ground point, GDAL's pixel convention.
+
+    Parameters
+    ----------
+    position : (float, float)
+        The student's (col, row), with (0, 0) at the image's top-left corner.
+    rpc_mapping : mapping
+        The RPC metadata the task gives (GDAL keys).
+    lon, lat, height : float
+        The ground point (degrees, degrees, metres).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``position`` is still ``...``.
+    ValueError
+        If ``rpc_mapping`` is not a valid RPC (the task's, not the student's, mistake).
+
+    Examples
+    --------
+    >>> rpc = terrain.simple_rpc_dict()
+    >>> check_rpc_position((500.5, 500.5), rpc, -34.9, -8.0, 0.0)
+    Correct: (col, row) is where the RPC puts the point.
+    """
+    generic = ("Normalise lon, lat and height with the offsets and scales, evaluate the four "
+               "20-term polynomials in GDAL's order, divide numerator by denominator, "
+               "de-normalise with SAMP/LINE scale and offset, then add 0.5.")
+    try:
+        value = _two_numbers(position, "position")
+    except _WrongForm as form:
+        return form.verdict(generic)
+    model = terrain.RPCModel.from_dict(rpc_mapping)
+    expected = np.array([float(v) for v in model.project(lon, lat, height)])
+    if np.allclose(value, expected, rtol=0, atol=1e-3):
+        return Verdict(True, "(col, row) is where the RPC puts the point.")
+    off = value - expected
+    message = (f"(col, row) is off by about {np.hypot(*off):.2g} pixels "
+               f"({'right' if off[0] > 0 else 'left'}, {'down' if off[1] > 0 else 'up'}).")
+    flat = np.array([float(v) for v in model.project(lon, lat, model.offsets["HEIGHT"])])
+    mistakes = [
+        (expected - 0.5, "RPC sample and line are 0 at the centre of the first pixel; GDAL's "
+                         "(col, row) are 0 at its corner: add 0.5 to both."),
+        (expected[::-1], "col and row are swapped: col comes from SAMP_*, row from LINE_*."),
+        (expected[::-1] - 0.5, "col and row are swapped (col from SAMP_*, row from LINE_*), and "
+                               "add 0.5 to both."),
+        (flat, "The height was left out: normalise it with HEIGHT_OFF and HEIGHT_SCALE too."),
+    ]
+    for wrong, hint in mistakes:
+        if np.allclose(value, wrong, rtol=0, atol=1e-3) and not np.allclose(wrong, expected):
+            return Verdict(False, message, hint)
+    return Verdict(False, message, generic)
+
+
+# -- Chapter 6c: automatic registration ---------------------------------------
+
+def check_keypoint_position(position, keypoint):
+    """A scikit-image keypoint, (row, col) with pixel centres at whole numbers, in GDAL's (col, row).
+
+    Parameters
+    ----------
+    position : (float, float)
+        The student's (col, row), with (0, 0) at the image's top-left corner.
+    keypoint : (float, float)
+        The keypoint as scikit-image gives it (``SIFT().keypoints[k]``): (row, col).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``position`` is still ``...``.
+
+    Examples
+    --------
+    >>> check_keypoint_position((20.5, 10.5), (10.0, 20.0))
+    Correct: (col, row) is the keypoint in GDAL's convention.
+    """
+    general = ("scikit-image gives (row, col) with the first pixel's centre at (0, 0); GDAL's "
+               "(col, row) has the first pixel's corner at (0, 0).")
+    try:
+        value = _two_numbers(position, "position")
+    except _WrongForm as form:
+        return form.verdict(general)
+    row, col = (float(v) for v in np.ravel(keypoint)[:2])
+    expected = np.array([col + 0.5, row + 0.5])
+    if np.allclose(value, expected, rtol=0, atol=1e-6):
+        return Verdict(True, "(col, row) is the keypoint in GDAL's convention.")
+    off = value - expected
+    message = (f"(col, row) is off by about {np.hypot(*off):.2g} pixels "
+               f"({'right' if off[0] > 0 else 'left'}, {'down' if off[1] > 0 else 'up'}).")
+    mistakes = [
+        (expected - 0.5, "Half a pixel is missing: a pixel's centre is 0.5 from its corner, so add "
+                         "0.5 to both coordinates."),
+        (expected - 1.0, "The half pixel goes the other way: GDAL's coordinates are 0.5 larger "
+                         "than scikit-image's at the same pixel centre."),
+        (expected[::-1], "The order is swapped: scikit-image gives (row, col), the check wants "
+                         "(col, row)."),
+        (expected[::-1] - 0.5, "The order is swapped (scikit-image gives (row, col)), and half a "
+                               "pixel is missing: add 0.5 to both."),
+    ]
+    for wrong, hint in mistakes:
+        if np.allclose(value, wrong, rtol=0, atol=1e-6) and not np.allclose(wrong, expected):
+            return Verdict(False, message, hint)
+    return Verdict(False, message, general)
+
+
+def _apply_affine(transform, point):
+    return np.array(transform @ (float(point[0]), float(point[1])))
+
+
+def check_composed_tiepoint(position, centre, shift, estimate, reference_transform):
+    """A correlation tie point composed by hand: where the window's feature is in the moving image.
+
+    The moving image was resampled onto the reference grid through ``estimate``
+    (map -> moving (col, row)); ``phase_cross_correlation(reference_window,
+    resampled_window)`` returned ``shift`` = (drow, dcol). The feature at the
+    window centre p is at p - (dcol, drow) on the resampled grid, so in the
+    moving image at ``estimate(reference_transform(p - (dcol, drow)))``.
+
+    Parameters
+    ----------
+    position : (float, float)
+        The student's (col, row) in the moving image.
+    centre : (float, float)
+        The window's centre (col, row) on the reference grid.
+    shift : (float, float)
+        (drow, dcol), as scikit-image returns it.
+    estimate : affine.Affine
+        Map (x, y) -> moving image (col, row).
+    reference_transform : affine.Affine
+        Reference pixel (col, row) -> map (x, y).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``position`` is still ``...``.
+
+    Examples
+    --------
+    >>> import affine
+    >>> to_map = affine.Affine(20, 0, 0, 0, -20, 0)
+    >>> check_composed_tiepoint((10.0, 8.0), (12, 9), (1.0, 2.0), ~to_map, to_map)
+    Correct: (col, row) is where the window's feature is in the moving image.
+    """
+    general = ("Move the window centre by minus the shift, (col − dcol, row − drow), take that "
+               "reference pixel to the map with the reference transform, then to the moving "
+               "image with the estimate.")
+    try:
+        value = _two_numbers(position, "position")
+    except _WrongForm as form:
+        return form.verdict(general)
+    centre = np.asarray(centre, dtype=float).ravel()
+    drow, dcol = (float(v) for v in np.ravel(shift)[:2])
+
+    def composed(point, through_map=True):
+        return _apply_affine(estimate, _apply_affine(reference_transform, point)
+                             if through_map else point)
+
+    expected = composed(centre - [dcol, drow])
+    if np.allclose(value, expected, rtol=0, atol=1e-6):
+        return Verdict(True, "(col, row) is where the window's feature is in the moving image.")
+    off = value - expected
+    message = (f"(col, row) is off by about {np.hypot(*off):.2g} moving-image pixels "
+               f"({'right' if off[0] > 0 else 'left'}, {'down' if off[1] > 0 else 'up'}).")
+    mistakes = [
+        (composed(centre + [dcol, drow]), "The shift registers the moving window onto the "
+                                          "reference one: the feature is at the centre minus "
+                                          "the shift, not plus."),
+        (composed(centre - [drow, dcol]), "scikit-image's shift is (drow, dcol), rows first; "
+                                          "subtract dcol from the column and drow from the row."),
+        (centre - [dcol, drow], "That is the position on the reference grid; the tie point needs "
+                                "it in the moving image: through the reference transform to the "
+                                "map, then through the estimate."),
+        (composed(centre - [dcol, drow], through_map=False),
+         "The reference transform is missing: a reference pixel must go to the map first."),
+    ]
+    for wrong, hint in mistakes:
+        if np.allclose(value, wrong, rtol=0, atol=1e-6) and not np.allclose(wrong, expected):
+            return Verdict(False, message, hint)
+    return Verdict(False, message, general)
+
+
+def check_check_point_error(error_px, model, truth, transform, shape, step=10, pixel_size=None):
+    """The check-point error of a registration: RMS distance to the truth over a grid, in pixels.
+
+    Parameters
+    ----------
+    error_px : float
+        The student's RMS, in pixels of the image the models map to.
+    model, truth : callable or affine.Affine
+        Map (x, y) -> image (col, row): the fitted model and the known answer.
+    transform : affine.Affine
+        Pixel -> map of the grid of check points (every ``step``-th cell centre).
+    shape : (rows, cols)
+        That grid's size.
+    step : int
+        Spacing of the check points, cells.
+    pixel_size : float, optional
+        The image's pixel size (map units), to recognise an answer in metres.
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``error_px`` is still ``...``.
+
+    Examples
+    --------
+    >>> import affine
+    >>> model = affine.Affine.translation(0.3, 0.4)
+    >>> check_check_point_error(0.5, model, affine.Affine.identity(), affine.Affine.identity(),
+    ...                         (20, 20))
+    Correct: `error_px` = 0.5 px.
+    """
+    general = ("At each check point take the two models' (col, row), the distance between them, "
+               "then the lecture's RMS: square, average, root.")
+    rows, cols = as_shape(shape)
+    grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
+    map_xy = np.column_stack(transform @ (grid_cols.ravel(), grid_rows.ravel()))
+
+    def apply(mapping):
+        if callable(mapping):
+            return np.asarray(mapping(map_xy), dtype=float)
+        return np.column_stack(mapping @ (map_xy[:, 0], map_xy[:, 1]))   # an affine.Affine
+
+    distance = np.hypot(*(apply(model) - apply(truth)).T)
+    expected = tiepoints.grid_error(model, truth, transform, shape, step)
+    mistakes = [
+        (float(distance.mean()), "That is the mean distance; the lecture's RMS squares the "
+                                 "distances before averaging and takes the root after."),
+        (expected / np.sqrt(2), "That divides by 2n: the squared distance of a point is "
+                                "dcol² + drow², one number per point; average over the n points."),
+        (float(distance.max()), "That is the largest distance, not the RMS."),
+    ]
+    if pixel_size:
+        mistakes.append((expected * pixel_size, "That looks like map units; the check wants "
+                                                "pixels of the image."))
+    return _judge(error_px, "error_px", expected, 1e-3, general, mistakes, units=" px",
+                  mistake_rtol=1e-3)
+

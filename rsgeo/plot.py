@@ -9,12 +9,14 @@ import weakref
 import numpy as np
 
 from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
+from ._i18n import _
 from .resample import bilinear_weights, keys_weights
 
 __all__ = [
     "FIGURE_PROBLEMS", "FIGURE_PROBLEM_PREFIX", "show_image", "grid_path", "draw_grid", "draw_mesh",
     "draw_neighbour_weights", "draw_stretch_frame", "fix_layout", "animation_html",
     "figure_problems", "audit_rendered_figures", "label_points", "draw_residual_arrows",
+    "draw_tiepoints",
 ]
 
 
@@ -82,10 +84,11 @@ def show_image(ax, image, transform=None, title="", cmap="gray", label="DN", vmi
         left, top = transform @ (0, 0)
         right, bottom = transform @ (cols, rows)
         extent = (left / scale, right / scale, bottom / scale, top / scale)
-        xlabel, ylabel = f"easting ({units})", f"northing ({units})"
+        xlabel, ylabel = _("easting ({units})").format(units=units), _("northing ({units})").format(
+            units=units)
     else:
         extent = (0, cols, rows, 0)
-        xlabel, ylabel = "column (pixels)", "row (pixels)"
+        xlabel, ylabel = _("column (pixels)"), _("row (pixels)")
     artist = ax.imshow(image, cmap=cmap, extent=extent, vmin=vmin, vmax=vmax, interpolation="nearest")
     ax.set(title=title, xlabel=xlabel, ylabel=ylabel)
     if colorbar:
@@ -259,9 +262,10 @@ def draw_neighbour_weights(ax, position, method):
             ax.scatter(*centre, s=2000 * abs(weight), color="tab:red" if weight < 0 else "tab:blue", alpha=0.6)
             ax.annotate(f"{weight:.2f}", centre, ha="center", va="center", fontsize=8)
     ax.scatter(col, row, marker="x", color="black", s=80)
-    ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel="column (px)",
-           ylabel="row (px)",
-           title=f"{method}: position ({col:.2f}, {row:.2f})")
+    ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel=_("column (px)"),
+           ylabel=_("row (px)"),
+           title=_("{method}: position ({col:.2f}, {row:.2f})").format(method=method, col=col,
+                                                                       row=row))
     ax.grid(True)
     ax.set_aspect("equal")
 
@@ -325,7 +329,7 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
             frames.clear()
         corrected = apply_gain_offset(x_image, gain_t, offset_t)
         mosaic, split = concatenate_halves(corrected, y_image)
-        counts, _ = np.histogram(corrected, np.arange(257))
+        counts = np.histogram(corrected, np.arange(257))[0]
         frames[key] = (mosaic, split, counts, seam_metrics(corrected, y_image))
     mosaic, split, counts, metrics = frames[key]
     if artists is None:
@@ -337,8 +341,8 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
     axes[1].set_ylim(0, 1.05 * max(counts.max(), artists["b_peak"]))
     artists["line"].set_ydata(gain_t * np.array([0, 255]) + offset_t)
     # y=1: a fixed title position, not re-derived from the tick labels at every frame
-    axes[0].set_title(f"t = {t:.1f}: mean Δ {metrics['mean_difference']:+.1f} DN, "
-                      f"spread Δ {metrics['std_difference']:+.1f} DN", y=1.0)
+    axes[0].set_title(_("t = {t:.1f}: mean Δ {mean:+.1f} DN, spread Δ {spread:+.1f} DN").format(
+        t=t, mean=metrics["mean_difference"], spread=metrics["std_difference"]), y=1.0)
     axes[2].set_title(f"Y = {gain_t:.3f} X + {offset_t:.2f}{title_extra}", y=1.0)
     return dict(metrics)
 
@@ -349,14 +353,14 @@ def _draw_stretch_axes(axes, x_image, y_image, mosaic, split, counts, bins):
         ax.clear()
     mosaic_artist = axes[0].imshow(mosaic, cmap="gray", vmin=0, vmax=255)
     axes[0].axvline(split - 0.5, color="tab:red", linewidth=0.8)
-    axes[0].set(xlabel="column (px)", ylabel="row (px)")
+    axes[0].set(xlabel=_("column (px)"), ylabel=_("row (px)"))
     # one filled step polygon per histogram, not 256 bars: a frame draws fast
-    histogram = axes[1].stairs(counts, bins, fill=True, alpha=0.6, label="A stretched",
+    histogram = axes[1].stairs(counts, bins, fill=True, alpha=0.6, label=_("A stretched"),
                                color="tab:blue")
-    b_counts, _ = np.histogram(np.asarray(y_image), bins)
+    b_counts = np.histogram(np.asarray(y_image), bins)[0]
     axes[1].stairs(b_counts, bins, fill=True, alpha=0.6, label="B", color="tab:orange")
-    axes[1].set_title("histograms (1 DN bins)", y=1.0)
-    axes[1].set(xlabel="DN", ylabel="count (pixels)", xlim=(0, 256))
+    axes[1].set_title(_("histograms (1 DN bins)"), y=1.0)
+    axes[1].set(xlabel="DN", ylabel=_("count (pixels)"), xlim=(0, 256))
     axes[1].legend()
     axes[2].scatter(np.ravel(x_image)[::5], np.ravel(y_image)[::5], s=2, alpha=0.3)
     (line,) = axes[2].plot([0, 255], [0, 255], color="tab:red")
@@ -672,3 +676,53 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
                        labelpos="E", coordinates="axes", color=color, labelcolor="white")
     key.text.set_path_effects([patheffects.withStroke(linewidth=2.5, foreground="black")])
     return arrows
+
+
+# -- Tie points (chapter 6c) --------------------------------------------------
+
+# marker colour of each tie-point verdict of rsgeo.tiepoints.correlation_tiepoints.
+_TIEPOINT_COLOURS = {"reliable": "tab:green", "outlier": "tab:red", "weak peak": "tab:orange",
+                    "low contrast": "tab:purple", "constant": "tab:pink", "invalid": "tab:gray"}
+
+
+def draw_tiepoints(ax, points, notes, size=30, colours=None):
+    """Tie points on an image axis, one colour and legend entry ("reliable (53)") per verdict.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        Showing the image in the points' coordinates.
+    points : (n, 2) array_like
+        Positions (col, row), or map (x, y) on an axis drawn in map units.
+    notes : sequence of str
+        One verdict per point, as ``GCPSet.notes`` of
+        :func:`rsgeo.tiepoints.correlation_tiepoints` ("reliable", "outlier", ...).
+    size : float
+        Marker area, points².
+    colours : dict, optional
+        Verdict -> colour, for verdicts of your own (default: the tie-point
+        verdicts' colours; blue for any other).
+
+    Returns
+    -------
+    dict
+        Verdict -> its scatter artist.
+
+    Raises
+    ------
+    ValueError
+        If there is not one verdict per point.
+    """
+    points = np.asarray(points, dtype=float).reshape(-1, 2)
+    notes = np.asarray(list(notes), dtype=object)
+    if len(notes) != len(points):
+        raise ValueError(f"draw_tiepoints needs one verdict per point, got {len(notes)} for "
+                         f"{len(points)} points")
+    colours = {**_TIEPOINT_COLOURS, **(colours or {})}
+    artists = {}
+    for verdict in dict.fromkeys(notes.tolist()):
+        chosen = notes == verdict
+        artists[verdict] = ax.scatter(*points[chosen].T, s=size, edgecolor="black", linewidth=0.5,
+                                      color=colours.get(verdict, "tab:blue"),
+                                      label=f"{verdict} ({chosen.sum()})", zorder=3)
+    return artists

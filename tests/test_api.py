@@ -21,7 +21,8 @@ MODULES = sorted(["rsgeo." + info.name for info in pkgutil.walk_packages([str(PA
 # modules whose docstrings and imports this test holds to the full standard
 DOCUMENTED = ["rsgeo.data", "rsgeo.distortion", "rsgeo.exercises", "rsgeo.experiments",
               "rsgeo.gcp", "rsgeo.matching", "rsgeo.plot", "rsgeo.radiometry", "rsgeo.regions",
-              "rsgeo.resample", "rsgeo.synthetic", "rsgeo.widgets"]
+              "rsgeo.resample", "rsgeo.synthetic", "rsgeo.widgets", "rsgeo.terrain",
+              "rsgeo.tiepoints"]
 
 
 def test_import_rsgeo_reaches_every_module():

@@ -1,9 +1,12 @@
-"""The built HTML book, opened page by page in a real browser (Debian's Chromium, driven by Playwright).
+"""The built HTML books, opened page by page in a real browser (Debian's Chromium, driven by Playwright).
 
-For every page: no console error, no failed request, no request outside the book's own server, no
-broken image, every jshtml animation plays (pressing play changes the frame), every saved widget
-renders; the search page finds a term; an exercise's solution toggle opens. A screenshot of each
-page goes to ``screenshots/``. The book must have been built first (the README's first command).
+Both books: the English one (_build/html) and the Portuguese edition (_build/pt_BR/_build/html).
+For every page of each: its ``<html lang>`` ("en", "pt-BR"), no console error, no failed request,
+no request outside the book's own server, no broken image, every jshtml animation plays (pressing
+play changes the frame), every saved widget renders; each book's search page finds a term
+("resampling", "reamostragem"); the language switch opens the same page in the other book; an
+exercise's solution toggle opens. A screenshot of each page goes to ``screenshots/``. The books
+must have been built first (the README's first command builds both).
 
 Chromium comes from Debian (``apt-get install chromium``), never downloaded by Playwright. Without
 it these tests are skipped, unless RSGEO_REQUIRE_BROWSER=1 (CI sets it), when they fail.
@@ -20,6 +23,12 @@ import pytest
 from notebook_runner import ROOT
 
 BUILD = ROOT / "_build" / "html"
+# Both books are tested: the English one and the Portuguese edition (_config_pt.yml), served
+# together from _build so that the language switch (a relative link between them) resolves.
+PORTUGUESE = ROOT / "_build" / "pt_BR" / "_build" / "html"
+BOOKS = {"en": BUILD, "pt_BR": PORTUGUESE}
+LANG_ATTRIBUTE = {"en": "en", "pt_BR": "pt-BR"}
+SEARCH_TERM = {"en": "resampling", "pt_BR": "reamostragem"}
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 SCREENSHOTS = ROOT / "screenshots"
 CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -31,6 +40,8 @@ def _missing():
         return "Chromium is not installed (apt-get install chromium)"
     if not (BUILD / "book" / "intro.html").exists():
         return "the book is not built (jupyter-book build . -W -n --keep-going)"
+    if not (PORTUGUESE / "book" / "intro.html").exists():
+        return "the Portuguese book is not built (the README's first command builds it)"
     try:
         import playwright  # noqa: F401
     except ImportError:
@@ -67,8 +78,11 @@ def browser():
         chromium.close()
 
 
-def check_page(browser, base, path, screenshot=None):
-    """Open one page and return the list of problems found on it (empty when all is well)."""
+def check_page(browser, base, path, screenshot=None, lang=None):
+    """Open one page and return the list of problems found on it (empty when all is well).
+
+    With ``lang``, the page's ``<html lang>`` must be it.
+    """
     problems = []
     page = browser.new_page(viewport={"width": 1280, "height": 900})
     page.on("console", lambda message: problems.append(f"console error: {message.text}")
@@ -88,6 +102,9 @@ def check_page(browser, base, path, screenshot=None):
     if response is None or not response.ok:
         problems.append(f"{path}: HTTP {response.status if response else 'no response'}")
     page.wait_for_timeout(500)
+    if lang is not None and page.evaluate("document.documentElement.lang") != lang:
+        problems.append(f"<html lang> is {page.evaluate('document.documentElement.lang')!r}, "
+                        f"not {lang!r}")
 
     broken = page.evaluate("""Array.from(document.images)
         .filter(img => !img.complete || img.naturalWidth === 0).map(img => img.src.slice(0, 80))""")
@@ -119,10 +136,17 @@ def check_page(browser, base, path, screenshot=None):
 
 
 @pytest.fixture(scope="module")
-def site():
-    server, base = serve(BUILD)
-    yield base
+def sites():
+    """{book: base URL}: both books from one server on _build, each under its own folder."""
+    server, base = serve(ROOT / "_build")
+    yield {book: f"{base}/{folder.relative_to(ROOT / '_build').as_posix()}"
+           for book, folder in BOOKS.items()}
     server.shutdown()
+
+
+@pytest.fixture(scope="module")
+def site(sites):
+    return sites["en"]
 
 
 PAGES = sorted(str(path.relative_to(BUILD)) for folder in ("book", "exercises")
@@ -131,20 +155,38 @@ PAGES = sorted(str(path.relative_to(BUILD)) for folder in ("book", "exercises")
 
 def test_every_chapter_page_is_built():
     assert len(PAGES) >= 17
+    missing = [path for path in PAGES if not (PORTUGUESE / path).exists()]
+    assert not missing, f"pages missing from the Portuguese book: {missing}"
 
 
 @pytest.mark.parametrize("path", PAGES)
-def test_page_works_in_the_browser(browser, site, path):
+@pytest.mark.parametrize("book", BOOKS)
+def test_page_works_in_the_browser(browser, sites, book, path):
     SCREENSHOTS.mkdir(exist_ok=True)
-    problems = check_page(browser, site, path, SCREENSHOTS / (path.replace("/", "_") + ".png"))
+    prefix = "" if book == "en" else f"{book}_"
+    problems = check_page(browser, sites[book], path,
+                          SCREENSHOTS / (prefix + path.replace("/", "_") + ".png"),
+                          lang=LANG_ATTRIBUTE[book])
     assert not problems, "\n".join(problems)
 
 
-def test_search_finds_a_term(browser, site):
+@pytest.mark.parametrize("book", BOOKS)
+def test_search_finds_a_term(browser, sites, book):
     page = browser.new_page()
-    page.goto(f"{site}/search.html?q=resampling", wait_until="load")
+    page.goto(f"{sites[book]}/search.html?q={SEARCH_TERM[book]}", wait_until="load")
     page.wait_for_selector("#search-results li, ul.search li", timeout=20000)
     assert page.locator("#search-results li, ul.search li").count() >= 3
+    page.close()
+
+
+@pytest.mark.parametrize("book, other", [("en", "pt_BR"), ("pt_BR", "en")])
+def test_language_switch_opens_the_same_page_in_the_other_book(browser, sites, book, other):
+    page = browser.new_page()
+    page.goto(f"{sites[book]}/book/04_resampling.html", wait_until="load")
+    page.locator(".rsgeo-language-switch a").click()
+    page.wait_for_load_state("load")
+    assert page.url == f"{sites[other]}/book/04_resampling.html"
+    assert page.evaluate("document.documentElement.lang") == LANG_ATTRIBUTE[other]
     page.close()
 
 
@@ -175,3 +217,39 @@ def test_the_checks_catch_a_broken_page(browser, tmp_path):
         server.shutdown()
     assert any(problem.startswith("broken image") for problem in problems), problems
     assert any("animation" in problem or "page error" in problem for problem in problems), problems
+
+
+def _repository_url():
+    import yaml
+
+    from offline_book import repository_configured
+
+    url = (yaml.safe_load((ROOT / "_config.yml").read_text()).get("repository") or {}).get("url", "")
+    return url, repository_configured(url)
+
+
+LAUNCH_SITES = ("mybinder.org", "colab.research.google.com")
+
+
+def test_no_link_to_a_placeholder_repository(browser, site):
+    # Launch buttons tell the truth: while _config.yml names a placeholder repository, no page
+    # links to it, nor to Binder or Colab; once a real one is set, the launch links name it.
+    from offline_book import PLACEHOLDER_REPOSITORIES
+
+    url, configured = _repository_url()
+    placeholders = [placeholder.split("github.com/")[1] for placeholder in PLACEHOLDER_REPOSITORIES]
+    for page_file in sorted(BUILD.rglob("*.html")):
+        text = page_file.read_text(errors="replace")
+        assert not any(name in text for name in placeholders), f"{page_file.name} names a placeholder"
+        if not configured:
+            assert not any(host in text for host in LAUNCH_SITES), f"{page_file.name} has a launch link"
+    page = browser.new_page()
+    page.goto(f"{site}/book/01_systematic_distortions.html", wait_until="load")
+    links = page.evaluate("Array.from(document.querySelectorAll('a[href]')).map(a => a.href)")
+    page.close()
+    launch = [link for link in links if any(host in link for host in LAUNCH_SITES)]
+    if configured:
+        repository = url.rstrip("/").split("github.com/")[-1]
+        assert launch and all(repository in link for link in launch), launch
+    else:
+        assert launch == [], launch

@@ -138,3 +138,49 @@ def test_a_failing_cell_or_an_unreadable_figure_fails_the_book_build(tmp_path):
     assert "broken on purpose" in output
     assert "unlabelled" in output and "stderr" in output.lower(), output[-3000:]
     assert "running over TCP" not in output          # the build's kernels talk over IPC sockets
+
+
+# -- The first code cell: installs the course outside its environment (Colab), nothing inside --
+
+INSTALL_MARKER = "# Outside the course's environment"
+
+
+def _toc_notebooks():
+    import yaml
+
+    toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
+    files = [entry["file"] for part in toc["parts"] for entry in part["chapters"]]
+    return [ROOT / (name + ".ipynb") for name in files if (ROOT / (name + ".ipynb")).exists()]
+
+
+@pytest.mark.parametrize("path", _toc_notebooks(), ids=lambda path: path.name)
+def test_first_code_cell_installs_the_course_outside_its_environment(path):
+    import yaml
+
+    url = yaml.safe_load((ROOT / "_config.yml").read_text())["repository"]["url"]
+    code = [cell for cell in nbformat.read(path, as_version=4).cells if cell.cell_type == "code"]
+    first = code[0]
+    assert first.source.startswith(INSTALL_MARKER), f"{path.name}: the install cell is not first"
+    assert "remove-input" in first.metadata.get("tags", []), f"{path.name}: the book must hide it"
+    assert f'url = "{url}"' in first.source, f"{path.name}: not the repository of _config.yml"
+    assert f'os.chdir("course/{path.parent.name}")' in first.source
+    assert sum(cell.source.startswith(INSTALL_MARKER) for cell in code) == 1
+
+
+def test_the_install_cell_does_nothing_inside_and_installs_outside(monkeypatch):
+    import importlib.util
+    import os
+    import subprocess
+
+    source = next(cell.source for cell in nbformat.read(_toc_notebooks()[0], as_version=4).cells
+                  if cell.cell_type == "code")
+    calls = []
+    monkeypatch.setattr(subprocess, "run", lambda command, **kwargs: calls.append(command))
+    monkeypatch.setattr(os, "chdir", lambda folder: calls.append(["chdir", folder]))
+    exec(source, {})                                   # rsgeo is installed here: nothing runs
+    assert calls == []
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name: None)     # as on Colab
+    exec(source, {})
+    assert calls[0][:2] == ["git", "clone"] and calls[0][-2].startswith("https://github.com/")
+    assert calls[1][1:4] == ["-m", "pip", "install"] and calls[1][-1] == "./course[widgets]"
+    assert calls[2][0] == "chdir"

@@ -21,6 +21,11 @@ def test_ci_runs_the_readme_commands_verbatim():
     ci = (ROOT / ".ci" / "run").read_text().splitlines()
     install, test = readme_blocks()[:2]
     assert "pip install -r requirements.txt" in install and "jupyter-book build" in install
+    # the first command builds both books: English, then the Portuguese edition from its cache
+    builds = [part.strip() for part in install.split("&&") if "jupyter-book build" in part]
+    assert builds == ["jupyter-book build . -W -n --keep-going",
+                      "jupyter-book build . --config _config_pt.yml --path-output _build/pt_BR "
+                      "-W -n --keep-going"], builds
     assert "pytest" in test
     assert install in ci and test in ci
 

@@ -10,6 +10,9 @@ The widget manager's two bundles (book/_vendor/widgets) look for their icon font
 that loads them, under ``@jupyter-widgets/`` and ``@jupyter-widgets/html-manager/dist/``. After
 the build, the fonts (book/_vendor/widget-fonts) are copied there for every folder that holds
 pages, so the repository keeps one copy of each font and no symbolic link.
+
+Launch buttons tell the truth: while ``repository.url`` in _config.yml is a placeholder (or
+empty), the book has no Binder, Colab or repository button and names no repository at all.
 """
 
 import os
@@ -22,6 +25,9 @@ from nbclient import NotebookClient
 
 FONTS = Path("book") / "_vendor" / "widget-fonts"
 FONT_FOLDERS = ("@jupyter-widgets", "@jupyter-widgets/html-manager/dist")
+# repository URLs that name no real repository: the book gets no launch button while one is set
+PLACEHOLDER_REPOSITORIES = ("https://github.com/OWNER/REPOSITORY",
+                            "https://github.com/rsgeo-course/rsgeo-course")
 
 
 def keep_scripts_once(app, pagename, templatename, context, doctree):
@@ -90,7 +96,33 @@ def kernels_over_ipc():
     NotebookClient._kernel_manager_class_default = lambda client: IPCKernelManager
 
 
+def repository_configured(url):
+    """True when ``url`` names a real repository: not empty, not a placeholder."""
+    return bool(url) and url.strip().rstrip("/") not in PLACEHOLDER_REPOSITORIES
+
+
+def honest_launch_buttons(app, config):
+    """No launch or repository button, and no repository URL in any page, while the
+    configured repository is a placeholder (see README, "Teach with it")."""
+    options = dict(config.html_theme_options or {})
+    if not repository_configured(options.get("repository_url", "")):
+        options.update(repository_url="", launch_buttons={}, use_repository_button=False,
+                       use_issues_button=False, use_edit_page_button=False)
+        config.html_theme_options = options
+
+
+def html_nodes_in_singlehtml(app):
+    """The single-page builder (exercises/print_course.py) writes every node the HTML builder
+    can: extensions such as myst-nb register their nodes' HTML writers for "html" only."""
+    if app.builder.name == "singlehtml":
+        handlers = app.registry.translation_handlers
+        for node, visitors in handlers.get("html", {}).items():
+            handlers.setdefault("singlehtml", {}).setdefault(node, visitors)
+
+
 def setup(app):
+    app.connect("config-inited", honest_launch_buttons)
+    app.connect("builder-inited", html_nodes_in_singlehtml)
     kernels_over_ipc()
     audit_figures_in_kernels()
     app.connect("html-page-context", keep_scripts_once, priority=900)

@@ -1,0 +1,184 @@
+"""What rsgeo says to a student, in the course's language (English or Brazilian Portuguese).
+
+Messages a student reads (exercise verdicts and hints, the most common ``ValueError`` messages,
+the labels of the figures :mod:`rsgeo.plot` draws) are written in English in the code and wrapped
+in :func:`_`; their Portuguese lives in the gettext catalogue
+``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, shipped compiled (``rsgeo.mo``, made by
+``locales/update.sh``; a test checks that it is current).
+
+The language is, in this order: the one given to :func:`set_language`, the environment variable
+``RSGEO_LANG`` (``pt_BR`` in the Portuguese notebooks), else English. It is looked up at every
+message, so setting ``RSGEO_LANG`` in a running kernel takes effect at once. Code stays English:
+names, arguments and the values a message quotes are never translated.
+
+Format strings are translated before they are filled, so that a translation can move the fields::
+
+    _("order {order} needs at least {n} GCPs, got {got}").format(order=2, n=6, got=4)
+"""
+
+import functools
+import gettext as _gettext
+import os
+from pathlib import Path
+
+__all__ = ["LANGUAGES", "ENVIRONMENT_VARIABLE", "LOCALE_DIR", "VERDICT_LABELS", "get_language",
+           "set_language", "translate", "_", "N_"]
+
+#: The languages rsgeo speaks; the first is the language of the code and the default.
+LANGUAGES = ("en", "pt_BR")
+#: The environment variable that chooses the language when :func:`set_language` was not called.
+ENVIRONMENT_VARIABLE = "RSGEO_LANG"
+#: Where the compiled catalogues are: ``LOCALE_DIR / language / "LC_MESSAGES" / "rsgeo.mo"``.
+LOCALE_DIR = Path(__file__).parent / "locale"
+DOMAIN = "rsgeo"
+
+_chosen = None
+
+
+def _normalise(language, source):
+    """``language`` as one of :data:`LANGUAGES` ("pt-BR", "pt", "pt_BR.UTF-8" -> "pt_BR")."""
+    if not isinstance(language, str):
+        raise ValueError(f"{source} must be a language name such as 'pt_BR', "
+                         f"got {type(language).__name__} {language!r}")
+    name = language.split(".")[0].split("@")[0].replace("-", "_").strip()
+    lowered = name.lower()
+    if lowered in ("", "c", "posix") or lowered.startswith("en"):
+        return "en"
+    if lowered in ("pt", "pt_br"):
+        return "pt_BR"
+    raise ValueError(f"{source} is {language!r}, a language rsgeo does not speak: "
+                     f"use one of {', '.join(LANGUAGES)}")
+
+
+def set_language(language=None):
+    """Choose the language of rsgeo's messages for this process.
+
+    Parameters
+    ----------
+    language : str or None
+        ``"en"`` or ``"pt_BR"`` (``"pt-BR"``, ``"pt"`` and a locale name such as
+        ``"pt_BR.UTF-8"`` mean the same); None goes back to the environment variable
+        ``RSGEO_LANG``, else English.
+
+    Returns
+    -------
+    str
+        The language now in use.
+
+    Raises
+    ------
+    ValueError
+        If ``language`` is not a language rsgeo speaks.
+
+    Examples
+    --------
+    >>> from rsgeo._i18n import _, set_language
+    >>> set_language("pt_BR")
+    'pt_BR'
+    >>> _("Correct")
+    'Correto'
+    >>> set_language("en")
+    'en'
+    """
+    global _chosen
+    _chosen = None if language is None else _normalise(language, "language")
+    return get_language()
+
+
+def get_language():
+    """The language rsgeo speaks now.
+
+    Returns
+    -------
+    str
+        One of :data:`LANGUAGES`: the one given to :func:`set_language`, else the
+        environment variable ``RSGEO_LANG``, else ``"en"``.
+
+    Raises
+    ------
+    ValueError
+        If ``RSGEO_LANG`` names a language rsgeo does not speak.
+
+    Examples
+    --------
+    >>> from rsgeo._i18n import get_language
+    >>> get_language() in ("en", "pt_BR")
+    True
+    """
+    if _chosen is not None:
+        return _chosen
+    return _normalise(os.environ.get(ENVIRONMENT_VARIABLE, "en"), ENVIRONMENT_VARIABLE)
+
+
+@functools.lru_cache(maxsize=None)
+def _catalogue(language):
+    if language == "en":
+        return _gettext.NullTranslations()
+    # an install without the compiled catalogue (see pyproject's package data) speaks English
+    return _gettext.translation(DOMAIN, LOCALE_DIR, languages=[language], fallback=True)
+
+
+def translate(message, language=None):
+    """``message`` in ``language`` (default: :func:`get_language`); English when not translated.
+
+    Parameters
+    ----------
+    message : str
+        The English text, as written in the code (a format string is translated unfilled).
+    language : str, optional
+        ``"en"`` or ``"pt_BR"``; default the current language.
+
+    Returns
+    -------
+    str
+        The translation, or ``message`` itself when the catalogue has none.
+
+    Raises
+    ------
+    ValueError
+        If ``language`` (or ``RSGEO_LANG``) is not a language rsgeo speaks.
+
+    Examples
+    --------
+    >>> from rsgeo._i18n import translate
+    >>> translate("Not yet", "pt_BR")
+    'Ainda não'
+    >>> translate("Not yet", "en")
+    'Not yet'
+    >>> translate("", "pt_BR")
+    ''
+    """
+    language = get_language() if language is None else _normalise(language, "language")
+    if not message:                     # gettext("") is the catalogue's header, not a message
+        return message
+    return _catalogue(language).gettext(message)
+
+
+_ = translate
+
+
+def N_(message):
+    """Mark ``message`` for the catalogue without translating it yet; translate it when shown.
+
+    Parameters
+    ----------
+    message : str
+        English text.
+
+    Returns
+    -------
+    str
+        ``message`` unchanged.
+
+    Examples
+    --------
+    >>> from rsgeo._i18n import N_, translate
+    >>> translate(N_("not attempted"), "pt_BR")
+    'não tentado'
+    """
+    return message
+
+
+#: The verdicts an exercise can get, in a check (:class:`rsgeo.exercises.Verdict`) or in a
+#: class's grading run (``exercises/grade.py``); ``translate(label)`` shows one to a student.
+VERDICT_LABELS = (N_("Correct"), N_("Not yet"), N_("not attempted"), N_("error"), N_("timed out"))
