@@ -84,6 +84,10 @@ def make_student_edition(output):
     if count != 1:
         raise ValueError("_config.yml has no `execute:` section to exclude the exercises from")
     config = re.sub(r"^title:\s*(.*)$", r"title: \1 (student edition)", config, count=1, flags=re.M)
+    # the edition is built alone: no Portuguese book beside it for the language switch to open
+    config, count = re.subn(r"^(\s*i18n_other_book:).*$", r'\1 ""', config, count=1, flags=re.M)
+    if count != 1:
+        raise ValueError("_config.yml has no `i18n_other_book:` setting to switch off")
     (output / "_config.yml").write_text(config)
     total = sum(student_notebook(path) for path in sorted((output / "exercises").glob("*.ipynb")))
     return total

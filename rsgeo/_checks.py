@@ -7,6 +7,8 @@ error at the line they wrote, not a traceback from deep inside NumPy.
 
 import numpy as np
 
+from ._i18n import _
+
 __all__ = [
     "as_points", "as_image", "as_shape", "check_range", "check_choice",
 ]
@@ -23,20 +25,18 @@ def as_points(points, name="points"):
     try:
         array = np.asarray(points, dtype=np.float64)
     except (TypeError, ValueError) as error:
-        raise ValueError(f"{name} must be numbers in an (n, 2) array: {error}") from None
+        raise ValueError(_("{name} must be numbers in an (n, 2) array: {error}").format(
+            name=name, error=error)) from None
     if array.ndim == 1 and array.shape == (2,):
         array = array[np.newaxis, :]
     if array.ndim != 2 or array.shape[1] != 2:
-        raise ValueError(
-            f"{name} must be an (n, 2) array of (x, y) pairs, got shape {array.shape}"
-        )
+        raise ValueError(_("{name} must be an (n, 2) array of (x, y) pairs, got shape {shape}")
+                         .format(name=name, shape=array.shape))
     bad = ~np.isfinite(array).all(axis=1)
     if bad.any():
         rows = np.flatnonzero(bad)[:5].tolist()
-        raise ValueError(
-            f"{name} holds NaN or infinite coordinates (rows {rows}); "
-            "every coordinate must be a finite number"
-        )
+        raise ValueError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
+                           "coordinate must be a finite number").format(name=name, rows=rows))
     return array
 
 
@@ -44,14 +44,15 @@ def as_image(image, name="image"):
     """Return ``image`` as an array with 2 (rows, cols) or 3 (bands, rows, cols) dimensions."""
     array = np.asarray(image)
     if array.ndim not in (2, 3):
-        raise ValueError(
-            f"{name} must be 2-D (rows, cols) or 3-D (bands, rows, cols), "
-            f"got {array.ndim}-D with shape {array.shape}"
-        )
+        raise ValueError(_("{name} must be 2-D (rows, cols) or 3-D (bands, rows, cols), got "
+                           "{ndim}-D with shape {shape}").format(name=name, ndim=array.ndim,
+                                                                 shape=array.shape))
     if array.dtype.kind not in "uif":
-        raise ValueError(f"{name} must hold integers or floats, got dtype {array.dtype}")
+        raise ValueError(_("{name} must hold integers or floats, got dtype {dtype}").format(
+            name=name, dtype=array.dtype))
     if min(array.shape[-2:]) < 1:
-        raise ValueError(f"{name} is empty (shape {array.shape}); it needs at least one pixel")
+        raise ValueError(_("{name} is empty (shape {shape}); it needs at least one pixel").format(
+            name=name, shape=array.shape))
     return array
 
 
@@ -59,19 +60,22 @@ def check_range(value, name, low=None, high=None, why=""):
     """Return ``value`` as a float, checked to be finite and within [low, high]."""
     number = float(value)
     if not np.isfinite(number):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
+        raise ValueError(_("{name} must be a finite number, got {value!r}").format(
+            name=name, value=value))
     if (low is not None and number < low) or (high is not None and number > high):
         bounds = f"[{low}, {high}]" if low is not None and high is not None else (
             f">= {low}" if low is not None else f"<= {high}")
         reason = f" ({why})" if why else ""
-        raise ValueError(f"{name} must be {bounds}{reason}, got {value!r}")
+        raise ValueError(_("{name} must be {bounds}{reason}, got {value!r}").format(
+            name=name, bounds=bounds, reason=reason, value=value))
     return number
 
 
 def check_choice(value, name, choices):
     """Return ``value`` if it is one of ``choices``, else raise naming the options."""
     if value not in choices:
-        raise ValueError(f"unknown {name} {value!r}; choose one of {', '.join(map(repr, choices))}")
+        raise ValueError(_("unknown {name} {value!r}; choose one of {choices}").format(
+            name=name, value=value, choices=", ".join(map(repr, choices))))
     return value
 
 
@@ -104,7 +108,8 @@ def as_shape(shape, name="shape"):
     ...
     ValueError: shape must be (rows, cols), two positive integers, got 351
     """
-    message = f"{name} must be (rows, cols), two positive integers, got {shape!r}"
+    message = _("{name} must be (rows, cols), two positive integers, got {shape!r}").format(
+        name=name, shape=shape)
     try:
         values = tuple(shape)
     except TypeError:

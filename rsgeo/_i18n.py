@@ -1,10 +1,11 @@
 """What rsgeo says to a student, in the course's language (English or Brazilian Portuguese).
 
-Messages a student reads (exercise verdicts and hints, the most common ``ValueError`` messages,
-the labels of the figures :mod:`rsgeo.plot` draws) are written in English in the code and wrapped
-in :func:`_`; their Portuguese lives in the gettext catalogue
-``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, shipped compiled (``rsgeo.mo``, made by
-``locales/update.sh``; a test checks that it is current).
+Messages a student reads (exercise verdicts, the checks' messages and hints, the most common
+``ValueError`` messages of :mod:`rsgeo._checks`, the labels of the figures :mod:`rsgeo.plot`
+draws) are written in English in the code and wrapped in :func:`_` (a check's hint sentences are
+translated when :class:`rsgeo.exercises.Verdict` shows them); their Portuguese lives in the gettext
+catalogue ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, shipped compiled (``rsgeo.mo``, made by
+``locales/update.py``, which collects the messages; a test checks that both are current).
 
 The language is, in this order: the one given to :func:`set_language`, the environment variable
 ``RSGEO_LANG`` (``pt_BR`` in the Portuguese notebooks), else English. It is looked up at every

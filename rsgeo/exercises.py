@@ -71,19 +71,22 @@ class Verdict:
     def __bool__(self):
         return self.ok
 
-    # the labels speak the course's language (rsgeo._i18n: RSGEO_LANG=pt_BR gives "Correto")
+    # Shown in the course's language (rsgeo._i18n: RSGEO_LANG=pt_BR gives "Correto"): the labels,
+    # and a message or hint written as one sentence in a check (locales/update.py puts every such
+    # sentence of this module in the catalogue); a composed message (_judge, _how_far) is
+    # translated when the check composes it.
     def __repr__(self):
         if self.ok:
-            return _("Correct") + f": {self.message}"
-        hint = "\n" + _("Hint") + f": {self.hint}" if self.hint else ""
-        return _("Not yet") + f": {self.message}" + hint
+            return _("Correct") + f": {_(self.message)}"
+        hint = "\n" + _("Hint") + f": {_(self.hint)}" if self.hint else ""
+        return _("Not yet") + f": {_(self.message)}" + hint
 
     def _repr_html_(self):
         colour, title = ("#1a7f37", _("Correct")) if self.ok else ("#b35900", _("Not yet"))
-        hint = ("<br><em>" + _("Hint") + f":</em> {html.escape(self.hint)}"
+        hint = ("<br><em>" + _("Hint") + f":</em> {html.escape(_(self.hint))}"
                 if (self.hint and not self.ok) else "")
         return (f'<div class="rsgeo-verdict" style="border-left:4px solid {colour};padding:4px 8px">'
-                f"<strong>{title}:</strong> {html.escape(self.message)}{hint}</div>")
+                f"<strong>{title}:</strong> {html.escape(_(self.message))}{hint}</div>")
 
 
 # -- The form of an answer ---------------------------------------------------
@@ -101,12 +104,12 @@ class _WrongForm(Exception):
 
 def _require(answer, name):
     if answer is Ellipsis:
-        raise ExerciseNotSolved(
-            f"`{name}` is still `...`: this task is yours. Write your answer in the cell above, "
-            "run it, then run this check again.")
+        raise ExerciseNotSolved(_(
+            "`{name}` is still `...`: this task is yours. Write your answer in the cell above, "
+            "run it, then run this check again.").format(name=name))
     if answer is None:
-        raise _WrongForm(f"`{name}` is None: did your function return its value? "
-                         "A function without `return` gives None.")
+        raise _WrongForm(_("`{name}` is None: did your function return its value? "
+                           "A function without `return` gives None.").format(name=name))
     return answer
 
 
@@ -173,15 +176,19 @@ def _near(answer, target, rtol, scale=None):
 
 
 def _bands(size, way, of=""):
+    # each phrase through gettext (rsgeo._i18n), filled after translation
     if size < 1e-3:
-        return f"close, but a little {way} (off by less than 0.1 %{of}, more than the check allows)"
-    if size < 1e-2:
-        return f"slightly {way} (off by 0.1 to 1 %{of})"
-    if size < 0.1:
-        return f"{way} by 1 to 10 %{of}"
-    if size < 0.5:
-        return f"{way} by 10 to 50 %{of}"
-    return f"{way} by more than half{of}"
+        phrase = _("close, but a little {way} (off by less than 0.1 %{of}, more than the check "
+                   "allows)")
+    elif size < 1e-2:
+        phrase = _("slightly {way} (off by 0.1 to 1 %{of})")
+    elif size < 0.1:
+        phrase = _("{way} by 1 to 10 %{of}")
+    elif size < 0.5:
+        phrase = _("{way} by 10 to 50 %{of}")
+    else:
+        phrase = _("{way} by more than half{of}")
+    return phrase.format(way=way, of=of)
 
 
 def _how_far(answer, expected, scale=None, scale_name=""):
@@ -201,22 +208,24 @@ def _how_far(answer, expected, scale=None, scale_name=""):
     """
     if answer != 0 and expected != 0 and np.sign(answer) != np.sign(expected):
         if np.isclose(-answer, expected, rtol=1e-2):
-            return "the right size with the wrong sign"
-        return "of the wrong sign, and its size is " + _how_far(-answer, expected, scale, scale_name)
+            return _("the right size with the wrong sign")
+        return _("of the wrong sign, and its size is {how}").format(
+            how=_how_far(-answer, expected, scale, scale_name))
     if scale is not None:
         offset = (answer - expected) / scale
-        return _bands(abs(offset), "too large" if offset > 0 else "too small", f" of {scale_name}")
+        return _bands(abs(offset), _("too large") if offset > 0 else _("too small"),
+                      _(" of {scale}").format(scale=scale_name))
     if answer == 0:
-        return "zero, and it should not be"
+        return _("zero, and it should not be")
     ratio = answer / expected
-    way = "too large" if ratio > 1 else "too small"
     if 0.5 < ratio < 1.5:
-        return _bands(abs(ratio - 1), way)
+        return _bands(abs(ratio - 1), _("too large") if ratio > 1 else _("too small"))
     factor = ratio if ratio > 1 else 1 / ratio
     for low, high in ((1.5, 2), (2, 5), (5, 10), (10, 100)):
         if factor < high:
-            return f"between {low:g} and {high:g} times {way}"
-    return f"more than 100 times {way}"
+            return (_("between {low:g} and {high:g} times too large") if ratio > 1 else
+                    _("between {low:g} and {high:g} times too small")).format(low=low, high=high)
+    return _("more than 100 times too large") if ratio > 1 else _("more than 100 times too small")
 
 
 def _judge(answer, name, expected, rtol, hint, mistakes=(), units="", scale=None, scale_name="",
@@ -235,7 +244,8 @@ def _judge(answer, name, expected, rtol, hint, mistakes=(), units="", scale=None
         return form.verdict(hint)
     if _near(value, expected, rtol, scale):
         return Verdict(True, f"`{name}` = {value:.6g}{units}.")
-    message = f"`{name}` is {_how_far(value, expected, scale, scale_name)}."
+    message = _("`{name}` is {how}.").format(name=name,
+                                            how=_how_far(value, expected, scale, scale_name))
     found = _matched(value, expected, rtol, mistakes, scale, mistake_rtol)
     return Verdict(False, message, found or hint)
 
@@ -248,7 +258,7 @@ def _matched(value, expected, rtol, mistakes, scale=None, mistake_rtol=None):
         if (np.isfinite(wrong) and _near(value, wrong, mistake_rtol or rtol, scale)
                 and not _near(wrong, expected, rtol, scale) and hint not in hints):
             hints.append(hint)
-    return " ".join(hints)
+    return " ".join(_(hint) for hint in hints)        # each in the course's language
 
 
 def _quiet(function, *args, **kwargs):

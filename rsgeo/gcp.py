@@ -25,6 +25,7 @@ import numpy as np
 from scipy.interpolate import RBFInterpolator
 
 from ._checks import as_points, as_shape, check_range
+from ._i18n import _
 
 __all__ = [
     "ORDERS", "min_gcps", "term_names", "design_matrix", "GeometricModel", "InverseModel",
@@ -621,17 +622,20 @@ def fit_polynomial(src, dst, order):
     dst = as_points(dst, "dst")
     order = _check_order(order)
     if len(src) != len(dst):
-        raise ValueError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} points")
+        raise ValueError(_("src and dst must hold the same GCPs, got {n_src} and {n_dst} points")
+                         .format(n_src=len(src), n_dst=len(dst)))
     needed = min_gcps(order)
     if len(src) < needed:
-        raise ValueError(f"order {order} needs at least {needed} GCPs, got {len(src)}")
+        raise ValueError(_("order {order} needs at least {n} GCPs, got {got}").format(
+            order=order, n=needed, got=len(src)))
     matrix, origin, scale = _normalised_design(src, order)
     rank = np.linalg.matrix_rank(matrix)
     if rank < needed:
-        raise ValueError(
-            f"the GCPs do not determine an order-{order} polynomial: they are collinear, repeated "
-            f"or too clustered (rank {rank} of the {needed} needed); spread the GCPs over the image")
-    scaled, *_ = np.linalg.lstsq(matrix, dst, rcond=None)
+        raise ValueError(_(
+            "the GCPs do not determine an order-{order} polynomial: they are collinear, repeated "
+            "or too clustered (rank {rank} of the {n} needed); spread the GCPs over the image")
+            .format(order=order, rank=rank, n=needed))
+    scaled = np.linalg.lstsq(matrix, dst, rcond=None)[0]
     powers = np.array([px + py for px, py in _TERMS[:needed]])
     coefficients = (scaled / scale**powers[:, np.newaxis]).T
     return PolynomialModel(order, coefficients, origin, scale, src, dst)

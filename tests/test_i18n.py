@@ -273,6 +273,37 @@ def test_verdicts_speak_the_chosen_language(portuguese, monkeypatch):
         "Correto", "Ainda não", "não tentado", "erro", "tempo esgotado"]
 
 
+def test_check_hints_and_messages_speak_the_chosen_language(portuguese, monkeypatch):
+    from rsgeo.exercises import ExerciseNotSolved, check_skew
+
+    metres = check_skew(12.6 * 1000, 0.0, 185.0, 705.0, 98.2)          # a known mistake's hint
+    assert repr(metres) == ("Ainda não: `skew_km` está mais de 100 vezes maior do que deveria.\n"
+                            "Dica: Isso parece estar em metros; a verificação quer quilômetros.")
+    assert "grande demais, com erro de 10 a 50 %" in repr(check_skew(16.4, 0.0, 185.0, 705.0, 98.2))
+    with pytest.raises(ExerciseNotSolved, match="esta tarefa é sua"):
+        check_skew(..., 0.0, 185.0, 705.0, 98.2)
+    monkeypatch.setenv("RSGEO_LANG", "en")                   # a check run in English answers in it
+    assert repr(check_skew(12.6 * 1000, 0.0, 185.0, 705.0, 98.2)) == (
+        "Not yet: `skew_km` is more than 100 times too large.\n"
+        "Hint: That looks like metres; the check wants kilometres.")
+
+
+def test_common_value_errors_speak_the_chosen_language(portuguese, monkeypatch):
+    import numpy as np
+
+    from rsgeo._checks import as_image, as_points, as_shape
+
+    with pytest.raises(ValueError, match=r"gcps deve ser um array \(n, 2\) de pares"):
+        as_points(np.zeros((3, 3)), "gcps")
+    with pytest.raises(ValueError, match="deve ser 2-D"):
+        as_image(np.zeros(4))
+    with pytest.raises(ValueError, match="dois inteiros positivos"):
+        as_shape(351)
+    monkeypatch.setenv("RSGEO_LANG", "en")
+    with pytest.raises(ValueError, match=r"must be an \(n, 2\) array"):
+        as_points(np.zeros((3, 3)), "gcps")
+
+
 def test_figure_labels_speak_the_chosen_language_and_pass_the_audit(portuguese):
     import matplotlib
 

@@ -66,6 +66,8 @@ def test_the_edition_builds_with_every_chapter_executed(edition):
     for chapter in CHAPTERS:
         page = (html / chapter.with_suffix(".html")).read_text()
         assert "cell_output" in page, f"{chapter}: no outputs: the chapter was not executed"
+        # built alone, the edition has no Portuguese book beside it to switch to
+        assert "rsgeo-language-switch" not in page, f"{chapter} links to a missing Portuguese book"
         if chapter.name.startswith("0") and "_widget" not in chapter.name:
             assert re.search(r"<img[^>]+(_images/|data:image/png)", page), f"{chapter} has no figure"
     for exercise in sorted((edition / "exercises").glob("*.ipynb")):
