@@ -31,8 +31,10 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 CACHE = ROOT / "_build" / ".jupyter_cache"
 DEFAULT_PDF = ROOT / "_build" / "pdf" / "rsgeo-course.pdf"
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update"]
+# Debian's Chromium (never one downloaded by Playwright), also what tests/test_browser.py opens
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 # TeX delimiters MathJax replaces: any left in the page's math elements means it did not run
 UNRENDERED = r"""Array.from(document.querySelectorAll('.math'))
     .filter(element => !element.querySelector('mjx-container'))
@@ -101,6 +103,18 @@ class _QuietServer(http.server.ThreadingHTTPServer):
         pass                       # the browser closing a connection early is not news
 
 
+def serve(folder):
+    """An HTTP server on a free loopback port, serving ``folder``; returns (server, base URL).
+
+    The browser is given the page over HTTP, not ``file://``, so that its scripts and fonts load
+    as on a web server. Stop it with ``server.shutdown()``.
+    """
+    handler = functools.partial(_QuietHandler, directory=str(folder))
+    server = _QuietServer(("127.0.0.1", 0), handler)
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server, f"http://127.0.0.1:{server.server_address[1]}"
+
+
 def print_pdf(page, out, chromium=None, timeout_s=120):
     """Print an HTML page to PDF with headless Chromium once its equations are typeset.
 
@@ -127,20 +141,17 @@ def print_pdf(page, out, chromium=None, timeout_s=120):
     """
     from playwright.sync_api import sync_playwright
 
-    chromium = chromium or shutil.which("chromium") or shutil.which("chromium-browser")
+    chromium = chromium or CHROMIUM
     if chromium is None:
         raise RuntimeError("Chromium is not installed: apt-get install chromium")
     page, out = Path(page).resolve(), Path(out).resolve()
     out.parent.mkdir(parents=True, exist_ok=True)
-    handler = functools.partial(_QuietHandler, directory=str(page.parent))
-    server = _QuietServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
+    server, base = serve(page.parent)
     try:
         with sync_playwright() as playwright:
             browser = playwright.chromium.launch(executable_path=chromium, args=CHROMIUM_ARGS)
             tab = browser.new_page()
-            tab.goto(f"http://127.0.0.1:{server.server_address[1]}/{page.name}", wait_until="load",
-                     timeout=timeout_s * 1000)
+            tab.goto(f"{base}/{page.name}", wait_until="load", timeout=timeout_s * 1000)
             tab.wait_for_function("window.MathJax && MathJax.startup && MathJax.startup.promise",
                                   timeout=timeout_s * 1000)
             tab.evaluate("MathJax.startup.promise")

@@ -11,12 +11,14 @@ executes the notebook itself, with the same audit.
 
 import datetime
 import json
+import os
 import time
 from pathlib import Path
 
 import sys
 
 import nbformat
+import pytest
 from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -30,6 +32,16 @@ DEPENDENCIES = ("rsgeo", "benchmarks/results")
 # (shown, animated or drawn by a widget) is checked by rsgeo.plot.figure_problems.
 AUDIT_START = "import rsgeo.plot\nrsgeo.plot.audit_rendered_figures()"
 AUDIT_END = "import json, rsgeo.plot\nprint('FIGURE_PROBLEMS=' + json.dumps(rsgeo.plot.FIGURE_PROBLEMS))"
+
+
+def skip_module_unless_ready(missing, what):
+    """Skip the calling test module when ``missing`` (a reason) is not None, or fail it when
+    RSGEO_REQUIRE_BROWSER=1 (CI sets it: there, the browser-driven tests must run)."""
+    if missing is None:
+        return
+    if os.environ.get("RSGEO_REQUIRE_BROWSER") == "1":
+        pytest.fail(f"{what} required but {missing}", pytrace=False)
+    pytest.skip(missing, allow_module_level=True)
 
 
 def execute_notebook(path, timeout=600, audit_figures=False):

@@ -12,15 +12,15 @@ Chromium comes from Debian (``apt-get install chromium``), never downloaded by P
 it these tests are skipped, unless RSGEO_REQUIRE_BROWSER=1 (CI sets it), when they fail.
 """
 
-import functools
-import http.server
-import os
 import shutil
-import threading
+import sys
 
 import pytest
 
-from notebook_runner import ROOT
+from notebook_runner import ROOT, skip_module_unless_ready
+
+sys.path.insert(0, str(ROOT / "exercises"))
+from print_course import CHROMIUM, CHROMIUM_ARGS, serve  # noqa: E402  (the printed course's browser)
 
 BUILD = ROOT / "_build" / "html"
 # Both books are tested: the English one and the Portuguese edition (_config_pt.yml), served
@@ -29,10 +29,7 @@ PORTUGUESE = ROOT / "_build" / "pt_BR" / "_build" / "html"
 BOOKS = {"en": BUILD, "pt_BR": PORTUGUESE}
 LANG_ATTRIBUTE = {"en": "en", "pt_BR": "pt-BR"}
 SEARCH_TERM = {"en": "resampling", "pt_BR": "reamostragem"}
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 SCREENSHOTS = ROOT / "screenshots"
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
 
 
 def _missing():
@@ -49,23 +46,7 @@ def _missing():
     return None
 
 
-if _missing():
-    if os.environ.get("RSGEO_REQUIRE_BROWSER") == "1":
-        pytest.fail(f"browser tests required but {_missing()}", pytrace=False)
-    pytest.skip(_missing(), allow_module_level=True)
-
-
-class _QuietHandler(http.server.SimpleHTTPRequestHandler):
-    def log_message(self, *args):
-        pass
-
-
-def serve(folder):
-    """An HTTP server on a free loopback port, serving ``folder``; returns (server, base URL)."""
-    handler = functools.partial(_QuietHandler, directory=str(folder))
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    return server, f"http://127.0.0.1:{server.server_address[1]}"
+skip_module_unless_ready(_missing(), "browser tests")
 
 
 @pytest.fixture(scope="module")

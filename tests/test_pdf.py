@@ -7,7 +7,6 @@ must have been built first (the README's first command). Needs Debian's Chromium
 tests are skipped, unless RSGEO_REQUIRE_BROWSER=1 (CI sets it), when they fail.
 """
 
-import os
 import re
 import shutil
 import subprocess
@@ -17,14 +16,14 @@ import nbformat
 import pytest
 import yaml
 
-from notebook_runner import BOOK_CACHE, ROOT
+from notebook_runner import BOOK_CACHE, ROOT, skip_module_unless_ready
 
 sys.path.insert(0, str(ROOT / "exercises"))
 import print_course  # noqa: E402
 
 
 def _missing():
-    if not (shutil.which("chromium") or shutil.which("chromium-browser")):
+    if print_course.CHROMIUM is None:
         return "Chromium is not installed (apt-get install chromium)"
     if not (shutil.which("pdftotext") and shutil.which("pdfinfo")):
         return "pdftotext is not installed (apt-get install poppler-utils)"
@@ -33,10 +32,7 @@ def _missing():
     return None
 
 
-if _missing():
-    if os.environ.get("RSGEO_REQUIRE_BROWSER") == "1":
-        pytest.fail(f"PDF tests required but {_missing()}", pytrace=False)
-    pytest.skip(_missing(), allow_module_level=True)
+skip_module_unless_ready(_missing(), "PDF tests")
 
 
 def chapter_titles():
