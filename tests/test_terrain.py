@@ -52,6 +52,13 @@ def sensor_and_rpc(angle=20.0):
     return sensor, fit_rpc(lon, lat, h, col, row)
 
 
+def random_ground(seed, n):
+    """``n`` random (lon, lat, height) within 0.04° of the scene's centre, 0 to 600 m high."""
+    rng = np.random.default_rng(seed)
+    return (rng.uniform(LON0 - 0.04, LON0 + 0.04, n), rng.uniform(LAT0 - 0.04, LAT0 + 0.04, n),
+            rng.uniform(0, 600, n))
+
+
 @pytest.fixture(scope="module")
 def scene():
     sensor, rpc = sensor_and_rpc()
@@ -114,10 +121,7 @@ def test_project_agrees_with_gdal_to_1e_6_pixel(scene):
     from rasterio.transform import RPCTransformer, TransformDirection
 
     _, rpc, *_ = scene
-    rng = np.random.default_rng(1)
-    lon = rng.uniform(LON0 - 0.04, LON0 + 0.04, 2000)
-    lat = rng.uniform(LAT0 - 0.04, LAT0 + 0.04, 2000)
-    h = rng.uniform(0, 600, 2000)
+    lon, lat, h = random_ground(1, 2000)
     col, row = rpc.project(lon, lat, h)
     with RPCTransformer(rpc.to_rasterio()) as transformer:
         gcol, grow = transformer._transform(lon, lat, h, transform_direction=TransformDirection.reverse)
@@ -184,10 +188,7 @@ def test_project_refuses_out_of_range_coordinates():
 
 def test_fit_rpc_reproduces_the_physical_sensor(scene):
     sensor, rpc, *_ = scene
-    rng = np.random.default_rng(3)
-    lon = rng.uniform(LON0 - 0.04, LON0 + 0.04, 1000)
-    lat = rng.uniform(LAT0 - 0.04, LAT0 + 0.04, 1000)
-    h = rng.uniform(0, 600, 1000)
+    lon, lat, h = random_ground(3, 1000)
     col, row = rpc.project(lon, lat, h)
     true_col, true_row = sensor.project(*to_xy(lon, lat), h)
     assert np.abs(col - true_col).max() < 1e-4 and np.abs(row - true_row).max() < 1e-4

@@ -78,6 +78,8 @@ _TERRAIN = {
         "Landsat 7 ETM+ band 4 (near infrared) of Olinda, 28.5 m, the same ground as "
         "olinda_dem (SIRGAS 2000 / UTM 25S). From the R package stars (Apache-2.0)."),
 }
+# every raster load() reads: the scenes (available()) and the terrain (available_terrain())
+_RASTERS = {**_DATASETS, **_TERRAIN}
 
 
 # GCPs collected between two shipped scenes, as QGIS Georeferencer .points files.
@@ -221,9 +223,7 @@ def path(name):
     >>> path("nat1").name, path("cbers2b_ccd_hrc").suffix, path("nat2.tif").name
     ('nat1.tif', '.points', 'nat2.tif')
     """
-    files = {**{key: entry[0] for key, entry in _DATASETS.items()},
-             **{key: entry[0] for key, entry in _GCP_FILES.items()},
-             **{key: entry[0] for key, entry in _TERRAIN.items()}}
+    files = {key: entry[0] for key, entry in {**_RASTERS, **_GCP_FILES}.items()}
     if name in files:
         return _FOLDER / files[name]
     if name in files.values():
@@ -252,15 +252,14 @@ def load(name):
     """
     import rasterio
 
-    registry = _TERRAIN if name in _TERRAIN else _DATASETS
-    if name not in registry:
+    if name not in _RASTERS:
         raise ValueError(f"unknown dataset {name!r}; available: {', '.join(available())}; "
                          f"terrain: {', '.join(available_terrain())}")
-    file = _FOLDER / registry[name][0]
+    file = _FOLDER / _RASTERS[name][0]
     with rasterio.open(file) as dataset:
         array = dataset.read()
         raster = Raster(array[0] if dataset.count == 1 else array, dataset.transform,
-                        dataset.crs, dataset.nodata, registry[name][1], name)
+                        dataset.crs, dataset.nodata, _RASTERS[name][1], name)
     return raster
 
 
