@@ -23,11 +23,10 @@ paper's (:func:`rsgeo.matching.register_by_regions`): tie points -> GCPSet ->
 model -> refinement (``gdalwarp -refine_gcps``) -> check points.
 """
 
-import contextlib
-import ctypes
 from dataclasses import dataclass
 
 import numpy as np
+from threadpoolctl import threadpool_limits
 
 from . import gcp, resample
 from ._checks import as_image, as_shape, check_choice, check_range
@@ -149,39 +148,13 @@ def robust_fit(src, dst, kind="polynomial", order=1, threshold=1.0, max_trials=1
     return gcp.fit_transform(src[inliers], dst[inliers], kind, order), inliers
 
 
-@contextlib.contextmanager
 def _one_blas_thread():
-    """Run the block with NumPy's OpenBLAS on one thread, then restore its thread count.
+    """A context in which NumPy's BLAS runs on one thread (restored after), via threadpoolctl.
 
     phase_cross_correlation's upsampled DFT multiplies matrices of a few dozen rows: with several
     BLAS threads on a busy machine each product waits for a core (25 ms instead of 1 ms here).
-    Where the library or its functions cannot be found (another BLAS, another system), nothing
-    changes.
     """
-    functions = None
-    try:
-        with open("/proc/self/maps") as maps:
-            paths = sorted({line.split()[-1] for line in maps if "openblas" in line.lower()})
-        for path in paths:
-            library = ctypes.CDLL(path)
-            for prefix in ("scipy_openblas", "openblas"):
-                for suffix in ("64_", ""):
-                    get = getattr(library, f"{prefix}_get_num_threads{suffix}", None)
-                    set_ = getattr(library, f"{prefix}_set_num_threads{suffix}", None)
-                    if get is not None and set_ is not None and functions is None:
-                        functions = (get, set_)
-    except OSError:
-        functions = None
-    if functions is None:
-        yield
-        return
-    get, set_ = functions
-    before = get()
-    set_(1)
-    try:
-        yield
-    finally:
-        set_(before)
+    return threadpool_limits(limits=1, user_api="blas")
 
 
 def _transform(transform):
