@@ -449,11 +449,17 @@ def check_scale(scale):
     ...
     ValueError: scale must be one or two finite numbers above 0 (output pixels per source pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), got (0.5, 0)
     """
-    message = ("scale must be one or two finite numbers above 0 (output pixels per source "
-               "pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), "
-               f"got {scale!r}")
+    return _positive_pair(scale, "scale", "output pixels per source pixel, xscale and yscale, "
+                          "e.g. 0.125 for 2.5 m taken to 20 m")
+
+
+def _positive_pair(value, name, meaning):
+    """``value`` (one number for both, or two) as two finite floats above 0, else ValueError
+    naming ``name`` and saying what it means."""
+    message = (f"{name} must be one or two finite numbers above 0 ({meaning}), "
+               f"got {value!r}")
     try:
-        values = np.asarray(scale, dtype=np.float64).ravel()
+        values = np.asarray(value, dtype=np.float64).ravel()
     except (TypeError, ValueError):
         raise ValueError(message) from None
     if values.size == 1:
@@ -1294,17 +1300,8 @@ def check_resolution(resolution):
     >>> check_resolution(20)
     (20.0, 20.0)
     """
-    message = ("resolution must be one or two finite numbers above 0 (the output pixel size "
-               f"in map units, xres and yres, e.g. 20 for 20 m pixels), got {resolution!r}")
-    try:
-        values = np.asarray(resolution, dtype=np.float64).ravel()
-    except (TypeError, ValueError):
-        raise ValueError(message) from None
-    if values.size == 1:
-        values = np.repeat(values, 2)
-    if values.size != 2 or not (np.isfinite(values).all() and (values > 0).all()):
-        raise ValueError(message)
-    return float(values[0]), float(values[1])
+    return _positive_pair(resolution, "resolution", "the output pixel size in map units, xres "
+                          "and yres, e.g. 20 for 20 m pixels")
 
 
 def suggested_grid(src_shape, mapping, resolution=None, tap=False):
