@@ -57,10 +57,21 @@ def build_templates(output, quiet=True):
     return output
 
 
-def update_book(templates, only_new=False):
+def update_book(templates, only_new=False, pages=None):
     """``sphinx-intl update`` of every page's catalogue from ``templates``; with ``only_new``,
-    only pages that have no catalogue yet get one (the others are left as they are)."""
-    if only_new:
+    only pages that have no catalogue yet get one (the others are left as they are); with
+    ``pages`` (names such as ``book/04_resampling``), only those pages' catalogues."""
+    if pages:
+        chosen = templates.parent / (templates.name + ".pages")
+        shutil.rmtree(chosen, ignore_errors=True)
+        for page in pages:
+            pot = templates / (page + ".pot")
+            if not pot.exists():
+                raise ValueError(f"no page {page!r} in the book (expected {pot})")
+            (chosen / page).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(pot, chosen / (page + ".pot"))
+        templates = chosen
+    elif only_new:
         new = templates.parent / (templates.name + ".new")
         shutil.rmtree(new, ignore_errors=True)
         for pot in templates.rglob("*.pot"):
@@ -273,6 +284,12 @@ def main(argv=None):
     parser.add_argument("--new-pages", action="store_true",
                         help="only make the catalogues of pages that have none (the others, "
                              "being translated, are left alone)")
+    parser.add_argument("--page", action="append", metavar="PAGE",
+                        help="only update this page's catalogue (e.g. book/04_resampling; "
+                             "repeatable): the templates are built in a folder of their own, "
+                             "so that two people can update different pages at once")
+    parser.add_argument("--rsgeo", action="store_true",
+                        help="only update and compile rsgeo's own catalogue (rsgeo.po)")
     parser.add_argument("--templates", metavar="FOLDER",
                         help="only write the English book's templates (.pot) into FOLDER")
     arguments = parser.parse_args(argv)
@@ -281,6 +298,15 @@ def main(argv=None):
         return 0
     if arguments.config:
         write_portuguese_config()
+        return 0
+    if arguments.rsgeo:
+        update_rsgeo()
+        return 0
+    if arguments.page:
+        import tempfile
+
+        with tempfile.TemporaryDirectory(prefix="rsgeo-gettext-") as folder:
+            update_book(build_templates(Path(folder) / "gettext"), pages=arguments.page)
         return 0
     if not arguments.stat:
         write_portuguese_config()
