@@ -37,6 +37,7 @@ from pathlib import Path  # noqa: E402
 
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+import scipy  # noqa: E402
 import skimage  # noqa: E402
 
 from rsgeo import data, gcp, matching, regions, synthetic, tiepoints  # noqa: E402
@@ -153,7 +154,8 @@ def main(argv=None):
               "perturbations": f"moving image + N(0, {NOISE_DN} DN); correlation's first "
                                f"estimate moved N(0, {SHIFT_M} m) per axis, turned "
                                f"N(0, {ROTATION_DEG} deg)",
-              **describe(skimage=skimage.__version__, pandas=pd.__version__),
+              **describe(skimage=skimage.__version__, scipy=scipy.__version__,
+                         pandas=pd.__version__),
               "OPENBLAS_NUM_THREADS": os.environ["OPENBLAS_NUM_THREADS"]}
     result = table(seeds)
     RESULTS.mkdir(exist_ok=True)

@@ -305,8 +305,16 @@ def main(argv=None):
     if arguments.page:
         import tempfile
 
-        with tempfile.TemporaryDirectory(prefix="rsgeo-gettext-") as folder:
-            update_book(build_templates(Path(folder) / "gettext"), pages=arguments.page)
+        # inside _build, like the full update, so that the catalogues' location comments stay
+        # relative to the repository
+        (ROOT / "_build").mkdir(exist_ok=True)
+        with tempfile.TemporaryDirectory(prefix="gettext-", dir=ROOT / "_build") as folder:
+            try:
+                update_book(build_templates(Path(folder)), pages=arguments.page)
+            finally:
+                shutil.rmtree(folder + ".doctrees", ignore_errors=True)
+                shutil.rmtree(folder + ".pages", ignore_errors=True)
+                Path(folder).mkdir(exist_ok=True)       # TemporaryDirectory removes it
         return 0
     if not arguments.stat:
         write_portuguese_config()
