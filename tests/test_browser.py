@@ -171,6 +171,28 @@ def test_language_switch_opens_the_same_page_in_the_other_book(browser, sites, b
     page.close()
 
 
+@pytest.mark.parametrize("width", [390, 800])
+@pytest.mark.parametrize("book", BOOKS)
+def test_the_table_of_contents_opens_below_992_px(browser, sites, book, width):
+    # pydata-sphinx-theme 0.17 with sphinx-book-theme 1.3 binds the toggle's handler to a hidden
+    # duplicate button (pydata-sphinx-theme issue 2451): the visible one did nothing on a phone
+    page = browser.new_page(viewport={"width": width, "height": 844})
+    page.goto(f"{sites[book]}/book/04_resampling.html", wait_until="load")
+    drawer = page.locator("dialog#pst-primary-sidebar-modal")
+    chapter_link = drawer.locator("a[href*='02_georeferencing']").first
+    assert not drawer.evaluate("dialog => dialog.open")
+    toggles = page.locator("button.primary-toggle:visible")
+    assert toggles.count() >= 1, "no visible table-of-contents toggle"
+    toggles.first.click()
+    page.wait_for_timeout(300)
+    assert drawer.evaluate("dialog => dialog.open"), "the toggle did not open the contents"
+    assert chapter_link.is_visible()
+    page.keyboard.press("Escape")                         # and it closes by keyboard
+    page.wait_for_timeout(300)
+    assert not drawer.evaluate("dialog => dialog.open")
+    page.close()
+
+
 def test_solution_toggle_opens(browser, site):
     page = browser.new_page()
     page.goto(f"{site}/exercises/ex01_distortions.html", wait_until="load")
