@@ -26,6 +26,7 @@ import html
 import inspect
 from dataclasses import dataclass
 
+import affine
 import numpy as np
 
 from . import distortion, gcp, georef, radiometry, resample
@@ -272,6 +273,28 @@ def _quiet(function, *args, **kwargs):
 
 # -- Chapter 1: systematic distortions --------------------------------------
 
+# The scenes chapter 1 computes and prints (its inputs, as in book/01_systematic_distortions):
+# an exercise asks about other inputs, and a check recognises an answer copied from the chapter
+# by recomputing the chapter's numbers from these inputs.
+#: (latitude, frame length km, altitude km, inclination) of the chapter's Earth-rotation frames
+_CHAPTER_1_FRAMES = ((0.0, 185.0, 705.0, 98.2), (0.0, 113.0, 778.0, 98.5),
+                     (-23.5, 113.0, 778.0, 98.5))
+#: (scan or half angle in degrees, altitude km) of the pixel sizes and swaths the chapter prints
+#: (MODIS; Landsat, CBERS CCD and SPOT at their half-angles; SPOT pointed 27° off nadir)
+_CHAPTER_1_SCANS = ((55.0, 705.0), (7.5, 705.0), (4.2, 778.0), (2.06, 832.0), (29.06, 832.0))
+_COPIED_SKEW = ("That is a number chapter 1 prints for its own frames (another latitude or "
+                "satellite); compute the offset with this task's latitude, frame length, "
+                "altitude and inclination.")
+_COPIED_SCAN = ("That is a number chapter 1 prints for another sensor; compute it with this "
+                "task's scan angle and altitude.")
+
+
+def _as_printed(values, decimals):
+    """``values`` and each rounded as a chapter prints it (a copied number is a rounded one)."""
+    return [v for value in values for v in
+            [float(value)] + [round(float(value), d) for d in decimals] if v != 0]
+
+
 _RADIANS = ("NaN here usually means np.arcsin got a value above 1: np.sin, np.cos and np.arcsin "
             "work in radians, so convert angles with np.radians first.")
 _DEGREES_HINT = ("np.cos and np.sin take radians: np.cos(-23.5) is the cosine of 23.5 radians. "
@@ -292,11 +315,22 @@ def _skew_by_hand(latitude, frame, altitude, inclination, radians=(True, True), 
     return distortion.EARTH_ROTATION_RAD_S * RE * (np.cos(phi) if cos_phi else 1.0) * frame / speed * factor
 
 
+def _chapter_1_skews():
+    """The offsets chapter 1 prints: each frame's size, west and north components (km)."""
+    values = []
+    for frame in _CHAPTER_1_FRAMES:
+        east, north = distortion.earth_rotation_offset(*frame)
+        values += [abs(distortion.earth_rotation_skew(*frame)), abs(east), abs(north)]
+    return values
+
+
 def check_skew(skew_km, latitude_deg, frame_length_km, altitude_km, inclination_deg):
     """Earth-rotation offset of a frame, computed by hand from the lecture's model.
 
-    The answer is the size (km, positive) of the westward offset of the
-    frame's last line relative to its first.
+    The answer is the size (km, positive) of the whole offset of the frame's
+    last line relative to its first: its length across the ground track, the
+    lecture's Δx, not its west component. The chapter's own frames' numbers
+    are recognised as copied.
 
     Parameters
     ----------
@@ -339,9 +373,16 @@ def check_skew(skew_km, latitude_deg, frame_length_km, altitude_km, inclination_
         (_quiet(_skew_by_hand, *args, speed_radius=R + altitude_km),
          "You used the satellite's own speed, (R + h)·sqrt(GM/(R + h)³); the frame is imaged at the "
          "speed of the ground track, R·sqrt(GM/(R + h)³)."),
-        (-expected, "The check asks for the size of the westward offset, in km: a positive number."),
+        (-expected, "The check asks for the size of the offset, in km: a positive number."),
         (1000 * expected, "That looks like metres; the check wants kilometres."),
+        (abs(distortion.earth_rotation_offset(*args)[0]),
+         "That is only the offset's west component; the task asks for the whole offset, "
+         "across the ground track: Δx itself."),
+        (abs(distortion.earth_rotation_offset(*args)[1]),
+         "That is only the offset's north component; the task asks for the whole offset, "
+         "across the ground track: Δx itself."),
     ]
+    mistakes += [(copied, _COPIED_SKEW) for copied in _as_printed(_chapter_1_skews(), (2,))]
     return _judge(skew_km, "skew_km", expected, 0.01,
                   "t = frame length / ground-track speed, ground-track speed = R·sqrt(GM/(R+h)³); "
                   "Δx = ωe·Re·cos φ·t·cos ζ with sin ζ = |cos i| / cos φ (chapter 1, Earth rotation).",
@@ -390,6 +431,11 @@ def check_pixel_growth(growth_percent, scan_angle_deg, altitude_km):
         (across, "That is the size relative to nadir (a ratio); the growth is (ratio − 1) × 100, in %."),
         (across - 1.0, "That is a fraction; the check wants per cent: multiply by 100."),
     ]
+    for scan in _CHAPTER_1_SCANS:           # the growths chapter 1 prints, curved and flat Earth
+        for curved in (True, False):
+            sizes = distortion.pixel_size(*scan, curved_earth=curved)
+            mistakes += [(copied, _COPIED_SCAN) for copied in
+                         _as_printed([100 * (float(size) - 1.0) for size in sizes], (2, 1))]
     return _judge(growth_percent, "growth_percent", expected, 0.02,
                   "Across-track size = β·s / cos z: the slant range s, and z from sin z = ((R+h)/R)·sin θ. "
                   "Growth = (size at θ / size at nadir − 1) × 100.", mistakes, " %", nan_hint=_RADIANS)
@@ -435,6 +481,9 @@ def check_swath(swath_km, half_angle_deg, altitude_km):
         (2 * (R + h) * gamma, "The arc is on the ground, radius R, not at the satellite's radius R + h."),
         (1000 * expected, "That looks like metres; the check wants kilometres."),
     ]
+    swaths = [distortion.swath_width(*scan, curved_earth=curved)
+              for scan in _CHAPTER_1_SCANS for curved in (True, False)]
+    mistakes += [(copied, _COPIED_SCAN) for copied in _as_printed(swaths, (1, 0))]
     return _judge(swath_km, "swath_km", expected, 0.005,
                   "The angle at the Earth's centre is γ = z − θ; the swath is 2·R·γ (γ in radians).",
                   mistakes, " km", nan_hint=_RADIANS)
@@ -704,7 +753,7 @@ def check_degree_choice(order, gcps, is_check):
                           "does better on the check points.", " ".join(dict.fromkeys(hints)) or generic)
 
 
-def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size):
+def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size, name="shift_px"):
     """The mean size of a datum shift at some points, in pixels of a given size.
 
     Parameters
@@ -718,6 +767,9 @@ def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size):
         E.g. SAD69 / UTM 21S and SIRGAS 2000 / UTM 21S.
     pixel_size : float
         Metres per pixel (20 for the CBERS CCD).
+    name : str, optional
+        The name of the student's variable, which the verdict quotes
+        (``"hrc_shift_px"`` in exercise 2b.2).
 
     Returns
     -------
@@ -734,6 +786,9 @@ def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size):
     --------
     >>> check_datum_shift_pixels(0.0, [[775445.0, 7369105.0]], 29191, 31981, 20.0).ok
     False
+    >>> check_datum_shift_pixels(0.0, [[775445.0, 7369105.0]], 29191, 31981, 2.5,
+    ...                          name="hrc_shift_px").message
+    '`hrc_shift_px` is zero, and it should not be.'
     """
     size = float(pixel_size)
     if not np.isfinite(size) or size <= 0:
@@ -751,7 +806,7 @@ def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size):
         (np.mean(distance) * size, "Multiplying by the pixel size gives metres², not pixels: divide."),
         (np.mean(dx) / size, "The shift's size is a distance, sqrt(dx² + dy²), not dx alone."),
     ]
-    return _judge(shift_px, "shift_px", expected, 0.01,
+    return _judge(shift_px, name, expected, 0.01,
                   "Transform the points with rsgeo.georef.transform_points, take each point's "
                   "distance sqrt(dx² + dy²), average, and divide by the pixel size.",
                   mistakes, " px", mistake_rtol=0.01)
@@ -977,6 +1032,24 @@ def check_output_pixel_size(pixel_size, src_shape, transform):
                   "sqrt(rows² + cols²).", mistakes, " m", mistake_rtol=1e-4)
 
 
+#: The grids chapter 4's table prints (book/04_resampling): the HRC scene's shape and
+#: geotransform (GDAL order), and the resolutions (``-tr``) it is warped to, with and without -tap.
+_CHAPTER_4_GRIDS = (((2810, 2954), (770595.0, 2.5, 0.0, 7370115.0, 0.0, -2.5), (20.0,)),)
+
+
+def _chapter_4_grids():
+    """(west, north, rows, cols) of each grid chapter 4's table prints."""
+    grids = []
+    for shape, geotransform, resolutions in _CHAPTER_4_GRIDS:
+        transform = affine.Affine.from_gdal(*geotransform)
+        options = [dict()] + [dict(resolution=size, tap=tap) for size in resolutions
+                              for tap in (False, True)]
+        for option in options:
+            grid, (rows, cols) = resample.suggested_grid(shape, transform, **option)
+            grids.append((grid.c, grid.f, rows, cols))
+    return grids
+
+
 def check_grid_extent(extent, src_shape, transform, resolution):
     """West, north, rows and cols of gdalwarp's grid with ``-tr resolution -tap``.
 
@@ -1012,6 +1085,8 @@ def check_grid_extent(extent, src_shape, transform, resolution):
     grid, (rows, cols) = resample.suggested_grid(src_shape, transform, resolution=size, tap=True)
     natural, (n_rows, n_cols) = resample.suggested_grid(src_shape, transform)
     answer = _require(extent, "extent")
+    generic = ("Find the footprint's edges (the corners through the transform), move them out "
+               "to multiples of the resolution, then count pixels between them.")
     form = ("`extent` must be four numbers, (west, north, rows, cols): the grid's left edge and "
             "top edge in metres, then its size in pixels.")
     try:
@@ -1022,17 +1097,32 @@ def check_grid_extent(extent, src_shape, transform, resolution):
         return Verdict(False, form)
     west, north, n_r, n_c = values
     if [west, north, n_r, n_c] == [grid.c, grid.f, rows, cols]:
-        return Verdict(True, f"`extent` = (west {west:.10g}, north {north:.10g}, {int(n_r)} rows, "
-                             f"{int(n_c)} cols).")
-    wrong = []
+        return Verdict(True, _("`extent` = (west {west:.10g}, north {north:.10g}, {rows} rows, "
+                               "{cols} cols).").format(west=west, north=north, rows=int(n_r),
+                                                       cols=int(n_c)))
+    # which parts are off and which way, never by how much (that would give the answer away)
+    problems = []
     if west != grid.c:
-        wrong.append("west")
+        problems.append(_("the west edge lies too far west") if west < grid.c
+                        else _("the west edge lies too far east"))
     if north != grid.f:
-        wrong.append("north")
-    if (n_r, n_c) != (rows, cols):
-        wrong.append("the size")
-    message = "`extent`: " + ", ".join(wrong) + " not yet right."
-    if (west, north) == (natural.c, natural.f):
+        problems.append(_("the north edge lies too far north") if north > grid.f
+                        else _("the north edge lies too far south"))
+    if n_r != rows:
+        problems.append(_("there are too many rows") if n_r > rows
+                        else _("there are too few rows"))
+    if n_c != cols:
+        problems.append(_("there are too many columns") if n_c > cols
+                        else _("there are too few columns"))
+    message = _("in `extent`, {problems}.").format(problems="; ".join(problems))
+    own = [(natural.c, natural.f, n_rows, n_cols)] + [
+        (g.c, g.f, *shape) for g, shape in (resample.suggested_grid(
+            src_shape, transform, resolution=size, tap=tap) for tap in (False, True))]
+    if (west, north, n_r, n_c) in set(_chapter_4_grids()) - set(own):
+        hint = ("Those are the numbers of chapter 4's table, made for the chapter's own "
+                "resolution; this task asks for another one: move the edges to multiples of "
+                "this task's resolution and count its pixels.")
+    elif (west, north) == (natural.c, natural.f):
         hint = ("Those are the footprint's own edges; -tap moves them outwards to multiples of "
                 "the resolution: floor(west / res) * res, ceil(north / res) * res.")
     elif west == np.ceil(natural.c / size) * size or north == np.floor(natural.f / size) * size:
@@ -1044,8 +1134,7 @@ def check_grid_extent(extent, src_shape, transform, resolution):
     elif (n_r, n_c) == (cols, rows):
         hint = "Rows come first, then columns: (west, north, rows, cols)."
     else:
-        hint = ("Find the footprint's edges (the corners through the transform), move them out "
-                "to multiples of the resolution, then count pixels between them.")
+        hint = generic
     return Verdict(False, message, hint)
 
 
@@ -1612,7 +1701,7 @@ def check_projective_matrix(matrix, src, dst):
     return Verdict(False, message, general)
 
 
-def check_model_choice(model, src, dst, is_check):
+def check_model_choice(model, src, dst, is_check, name="model"):
     """The model (a label of ``rsgeo.gcp.GEOREFERENCER_MODELS``) with the lowest check-point RMS.
 
     Parameters
@@ -1623,6 +1712,9 @@ def check_model_choice(model, src, dst, is_check):
         All points (map -> image).
     is_check : (n,) array_like of bool
         The check points; the others are fitted.
+    name : str, optional
+        The name of the student's variable, which the verdict quotes
+        (``"choice"`` in exercise 3b.3).
 
     Returns
     -------
@@ -1648,20 +1740,23 @@ def check_model_choice(model, src, dst, is_check):
     generic = ("Fit each model on the GCPs that are not check points and compare their RMS on "
                "the check points; the fitting RMS always prefers more parameters.")
     try:
-        model = _require(model, "model")
+        model = _require(model, name)
         if not isinstance(model, str):
-            raise _WrongForm(f"`model` is {model!r}; the check needs the model's name as text, "
-                             "e.g. 'polynomial 1'.")
+            raise _WrongForm(_("`{name}` is {value!r}; the check needs the model's name as "
+                               "text, e.g. 'polynomial 1'.").format(name=name, value=model))
         if model not in labels:
-            listed = ", ".join(repr(label) for label in labels[:-1]) + f" or {labels[-1]!r}"
-            raise _WrongForm(f"`model` is {model!r}: the model is one of {listed}.")
+            listed = (", ".join(repr(label) for label in labels[:-1]) + " " + _("or")
+                      + f" {labels[-1]!r}")
+            raise _WrongForm(_("`{name}` is {value!r}: the model is one of {listed}.").format(
+                name=name, value=model, listed=listed))
     except _WrongForm as form:
         return form.verdict(generic)
     table = gcp.compare_models(src, dst, is_check, models)
     check = table["check RMS (px)"]
     best = check.idxmin()
     if model == best:
-        return Verdict(True, f"{model}: check-point RMS {check[model]:.2f} px, the lowest.")
+        return Verdict(True, _("`{name}` is {value!r}: check-point RMS {rms:.2f} px, the "
+                               "lowest.").format(name=name, value=model, rms=check[model]))
     hints = []
     if model == table["fitting RMS (px)"].idxmin():
         hints.append("That model has the lowest RMS on the GCPs used in the fit (a TPS's is "
@@ -1670,8 +1765,10 @@ def check_model_choice(model, src, dst, is_check):
     if model == everything.idxmin() and not hints:
         hints.append("That is the lowest RMS of a fit on ALL the points; the check points must "
                      "stay out of the fit.")
-    return Verdict(False, f"{model} has a check-point RMS of {check[model]:.2f} px; another "
-                          "model does better on the check points.", " ".join(hints) or generic)
+    return Verdict(False, _("`{name}` is {value!r}, whose check-point RMS is {rms:.2f} px; "
+                            "another model does better on the check points.").format(
+                                name=name, value=model, rms=check[model]),
+                   " ".join(hints) or generic)
 
 
 # -- For instructors: what each check recognises -------------------------------
@@ -1758,6 +1855,8 @@ def recognised_mistakes(check):
     for node in ast.walk(tree):
         if isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "") == "generic":
             add("general", node.value)
+        elif isinstance(node, ast.Assign) and getattr(node.targets[0], "id", "") == "hint":
+            add("mistake", node.value)          # a check that picks one of several hints
         elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
               and node.func.attr == "append" and len(node.args) == 1):
             add("mistake", node.args[0])

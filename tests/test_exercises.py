@@ -23,7 +23,7 @@ R, RE, OMEGA, GM = 6371.0, 6378.137, 7.292115e-5, 398600.4418
 
 # -- The exercises' settings and the students' answers, right and wrong -------------------------
 
-def skew(lat=-23.5, inc=98.5, h=778.0, frame=113.0, lat_rad=True, inc_rad=True, zeta="cos",
+def skew(lat=-30.0, inc=98.5, h=778.0, frame=113.0, lat_rad=True, inc_rad=True, zeta="cos",
          cos_phi=True, divide=True, speed_radius=R):
     phi = np.radians(lat) if lat_rad else lat
     i = np.radians(inc) if inc_rad else inc
@@ -35,7 +35,7 @@ def skew(lat=-23.5, inc=98.5, h=778.0, frame=113.0, lat_rad=True, inc_rad=True, 
 
 
 def growth(curved=True, divide_by="z", ratio=False):
-    theta, h = np.radians(7.5), 705.0
+    theta, h = np.radians(10.3), 786.0
     if not curved:
         return 100 * (1 / np.cos(theta) ** 2 - 1)
     z = np.arcsin((R + h) / R * np.sin(theta))
@@ -46,7 +46,7 @@ def growth(curved=True, divide_by="z", ratio=False):
 
 
 def swath(kind="arc"):
-    theta, h = np.radians(55.0), 705.0
+    theta, h = np.radians(55.4), 833.0
     z = np.arcsin((R + h) / R * np.sin(theta))
     gamma = z - theta
     return {"arc": 2 * R * gamma, "flat": 2 * h * np.tan(theta), "half": R * gamma,
@@ -212,15 +212,15 @@ def suboptimal():
 
 # -- Each check: how to call it, its right answer, its expected value --------------------------
 
-SKEW_ARGS = dict(latitude_deg=-23.5, frame_length_km=113.0, altitude_km=778.0, inclination_deg=98.5)
+SKEW_ARGS = dict(latitude_deg=-30.0, frame_length_km=113.0, altitude_km=778.0, inclination_deg=98.5)
 
 CHECKS = {
     "skew": (lambda a: exercises.check_skew(a, **SKEW_ARGS), skew,
              lambda: abs(distortion.earth_rotation_skew(**SKEW_ARGS))),
-    "growth": (lambda a: exercises.check_pixel_growth(a, 7.5, 705.0), growth,
-               lambda: 100 * (float(distortion.pixel_size(7.5, 705.0)[1]) - 1)),
-    "swath": (lambda a: exercises.check_swath(a, 55.0, 705.0), swath,
-              lambda: distortion.swath_width(55.0, 705.0)),
+    "growth": (lambda a: exercises.check_pixel_growth(a, 10.3, 786.0), growth,
+               lambda: 100 * (float(distortion.pixel_size(10.3, 786.0)[1]) - 1)),
+    "swath": (lambda a: exercises.check_swath(a, 55.4, 833.0), swath,
+              lambda: distortion.swath_width(55.4, 833.0)),
     "design": (lambda a: exercises.check_design_matrix(a, georeferencing()[1], order=1), design, None),
     "rms": (lambda a: exercises.check_rms(a, georeferencing()[2], georeferencing()[0].image_xy),
             rms_answer, lambda: gcp.rms_error(georeferencing()[2], georeferencing()[0].image_xy)),
@@ -273,6 +273,8 @@ MISTAKES = [
     ("skew", lambda: skew(lat_rad=False, inc_rad=False), "radians"),     # NaN: arcsin of > 1
     ("skew", lambda: -skew(), "positive number"),
     ("skew", lambda: 1000 * skew(), "metres"),
+    ("skew", lambda: -distortion.earth_rotation_offset(**SKEW_ARGS)[0], "only the offset's west"),
+    ("skew", lambda: distortion.earth_rotation_offset(**SKEW_ARGS)[1], "only the offset's north"),
     ("growth", lambda: growth(curved=False), "flat-Earth growth"),
     ("growth", lambda: growth(divide_by="nothing"), "along-track growth"),
     ("growth", lambda: growth(divide_by="theta"), "not by cos θ"),
@@ -532,9 +534,152 @@ def test_exercise_text_cites_the_course_not_the_papers_files():
         assert "paper 00" not in verdict.hint and "chapter 6" in verdict.hint
 
 
-def test_the_earth_rotation_offset_points_west():
+def test_the_earth_rotation_offset_points_west_and_the_task_asks_one_quantity():
     text = "\n".join(cell.source for cell in exercise_text() if cell.cell_type == "markdown")
-    assert "eastward offset" not in text and "westward offset" in text
+    assert "eastward offset" not in text and "westward offset" not in text
+    task = next(cell.source for cell in exercise_text() if ":label: ex-1-1" in cell.source)
+    assert "**west**" in task and "**whole offset**" in task and "not the offset's west" in task
+
+
+# -- The chapters print their own examples' answers: the exercises ask about other inputs ------
+
+def chapter_1_numbers():
+    """What chapter 1 prints about its frames and sensors, recomputed from its inputs."""
+    skews, growths, swaths = [], [], []
+    for frame in exercises._CHAPTER_1_FRAMES:
+        east, north = distortion.earth_rotation_offset(*frame)
+        skews += [abs(distortion.earth_rotation_skew(*frame)), -east, abs(north)]
+    for scan in exercises._CHAPTER_1_SCANS:
+        growths.append(100 * (float(distortion.pixel_size(*scan)[1]) - 1))
+        swaths.append(distortion.swath_width(*scan))
+    return {"skew": skews, "growth": growths, "swath": swaths}
+
+
+@pytest.mark.parametrize("name", ["skew", "growth", "swath"])
+def test_a_number_copied_from_chapter_1_is_wrong_and_recognised(name):
+    check, right, _ = CHECKS[name]
+    assert check(right()).ok
+    for copied in chapter_1_numbers()[name]:
+        verdict = check(round(copied, 2))           # as the chapter prints it
+        assert not verdict.ok, (copied, verdict)
+        assert "chapter 1 prints" in verdict.hint or "only the offset's" in verdict.hint, verdict
+
+
+@pytest.mark.parametrize("check, arguments", [
+    ("check_skew", {"latitude_deg": "-30.0", "frame_length_km": "113.0", "altitude_km": "778.0",
+                    "inclination_deg": "98.5"}),
+    ("check_pixel_growth", {"scan_angle_deg": "10.3", "altitude_km": "786.0"}),
+    ("check_swath", {"half_angle_deg": "55.4", "altitude_km": "833.0"}),
+])
+def test_exercises_1_check_the_inputs_tested_here(check, arguments):
+    assert exercise_check_call("ex01_distortions", check)[1] == arguments
+
+
+def test_chapter_1_inputs_are_the_chapters_own():
+    source = "\n".join(cell.source for cell in nbformat.read(
+        ROOT / "book" / "01_systematic_distortions.ipynb", as_version=4).cells)
+    for latitude, frame, altitude, inclination in exercises._CHAPTER_1_FRAMES:
+        assert f"{altitude:g}" in source and f"{inclination:g}" in source and f"{frame:g}" in source
+    for angle, altitude in exercises._CHAPTER_1_SCANS:
+        assert f"{altitude:g}" in source and (f"{angle:g}" in source or angle == 29.06)
+
+
+def test_chapter_4_grid_inputs_are_the_hrc_scene():
+    from rsgeo import data
+
+    hrc = data.load("cbers2b_hrc")
+    (shape, geotransform, resolutions), = exercises._CHAPTER_4_GRIDS
+    assert tuple(hrc.array.shape[-2:]) == shape and hrc.transform.to_gdal() == geotransform
+
+
+def exercise_check_call(notebook, check):
+    """The positional and keyword arguments (as source) of the call of ``check`` in ``notebook``."""
+    import ast
+
+    cells = nbformat.read(ROOT / "exercises" / f"{notebook}.ipynb", as_version=4).cells
+    for cell in cells:
+        if cell.cell_type == "code" and f"{check}(" in cell.source and "import" not in cell.source:
+            call = ast.parse(cell.source).body[0].value
+            return ([ast.unparse(a) for a in call.args],
+                    {k.arg: ast.unparse(k.value) for k in call.keywords})
+    raise AssertionError(f"{check} not called in {notebook}")
+
+
+def test_task_4_5_asks_for_another_grid_than_chapter_4s_table():
+    import affine
+
+    transform = affine.Affine(2.5, 0, 770595.0, 0, -2.5, 7370115.0)
+    args, keywords = exercise_check_call("ex04_resampling", "check_grid_extent")
+    assert args == ["extent", "hrc_shape", "hrc_transform"] and keywords == {"resolution": "res"}
+    source = "\n".join(c.source for c in exercise_text())
+    assert "res = 25.0" in source and "-tr 25 25 -tap" in source
+    (shape, _geotransform, (chapter_resolution,)), = exercises._CHAPTER_4_GRIDS
+    right = resample.suggested_grid(shape, transform, resolution=25.0, tap=True)
+    answer = (right[0].c, right[0].f, *right[1])
+    assert exercises.check_grid_extent(answer, shape, transform, 25.0).ok
+    for copied in exercises._chapter_4_grids()[1:]:      # [0]: the scene's own grid
+        verdict = exercises.check_grid_extent(copied, shape, transform, 25.0)
+        assert not verdict.ok and "chapter 4's table" in verdict.hint, verdict
+    # the chapter's own task (20 m) is not told it copied: its hints stay the usual ones
+    footprint = exercises.check_grid_extent((770595.0, 7370115.0, 351, 369), shape, transform,
+                                            chapter_resolution)
+    assert "chapter 4" not in footprint.hint
+
+
+@pytest.mark.parametrize("answer, parts", [
+    ((770580.0, 7370120.0, 352, 370), ["the west edge lies too far east",
+                                       "the north edge lies too far south",
+                                       "there are too many rows", "there are too many columns"]),
+    ((770550.0, 7370150.0, 282, 297), ["the west edge lies too far west",
+                                       "the north edge lies too far north"]),
+    ((770575.0, 7370125.0, 281, 298), ["there are too few rows", "there are too many columns"]),
+])
+def test_the_grid_verdict_is_a_sentence_that_names_each_wrong_part(answer, parts):
+    import affine
+
+    transform = affine.Affine(2.5, 0, 770595.0, 0, -2.5, 7370115.0)
+    verdict = exercises.check_grid_extent(answer, (2810, 2954), transform, 25.0)
+    assert verdict.message == "in `extent`, " + "; ".join(parts) + ".", verdict.message
+
+
+def test_each_verdict_names_the_variable_the_student_wrote():
+    """A check's verdict quotes its answer's name: the variable of the exercise's call."""
+    import ast
+    import inspect
+
+    quoted = {"check_decode": "decoded"}          # its messages name the exercise's variable
+    for path in sorted((ROOT / "exercises").glob("*.ipynb")):
+        for cell in nbformat.read(path, as_version=4).cells:
+            if cell.cell_type != "code":
+                continue
+            for node in ast.walk(ast.parse(cell.source)):
+                if not (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                        and node.func.id.startswith("check_") and node.args
+                        and isinstance(node.args[0], ast.Name)):
+                    continue
+                check = getattr(exercises, node.func.id)
+                parameters = inspect.signature(check).parameters
+                given = {k.arg: ast.literal_eval(k.value) for k in node.keywords
+                         if k.arg == "name"}
+                default = parameters["name"].default if "name" in parameters else None
+                name = given.get("name", quoted.get(node.func.id, default
+                                                    or next(iter(parameters))))
+                assert name == node.args[0].id, (path.name, ast.unparse(node))
+
+
+def test_the_renamed_answers_are_quoted_by_their_names():
+    pair = synthetic.distorted_pair(seed=2).gcps
+    is_check = np.arange(len(pair)) % 3 == 0
+    for answer in ("tps", "affine", 2):
+        verdict = exercises.check_model_choice(answer, pair.map_xy, pair.image_xy, is_check,
+                                               name="choice")
+        assert verdict.message.startswith("`choice` is "), verdict.message
+        assert "`model`" not in verdict.message
+    points = [[775445.0, 7369105.0]]
+    for answer in (0.0, "1.5", None):
+        verdict = exercises.check_datum_shift_pixels(answer, points, 29191, 31981, 2.5,
+                                                     name="hrc_shift_px")
+        assert "`hrc_shift_px`" in verdict.message and "`shift_px`" not in verdict.message
 
 
 def test_summaries_do_not_state_the_answers():
