@@ -11,3 +11,22 @@ def rsgeo_speaks_english():
     with pytest.MonkeyPatch.context() as patch:
         patch.delenv("RSGEO_LANG", raising=False)
         yield
+
+
+# Markers by what a test module needs (pyproject.toml registers them; the README gives the fast
+# run): a change to one rsgeo module needs `-m "not notebooks and not browser"`.
+MODULE_MARKERS = {
+    "notebooks": {"test_notebooks", "test_student_edition", "test_prose_numbers", "test_grade",
+                  "test_readme", "test_i18n"},
+    "browser": {"test_browser", "test_pdf"},
+    "gdal": {"test_gcp", "test_georef", "test_resample", "test_terrain", "test_transforms",
+             "test_data", "test_gdal_autotest_warp"},
+}
+
+
+def pytest_collection_modifyitems(items):
+    for item in items:
+        module = item.path.stem
+        for marker, modules in MODULE_MARKERS.items():
+            if module in modules:
+                item.add_marker(marker)

@@ -57,6 +57,26 @@ DEFINITION = [re.compile(pattern.replace("NUM", r"(?P<num>[\d.,]+)"), flags=re.I
 # Numbers a notebook states as definitions, each with why (notebook -> list of exact snippets of
 # the sentence that contain the number). Keep this short: a measured number is glued, not listed.
 ALLOWED: dict[str, list[str]] = {
+    "04_resampling.ipynb": [
+        # the parameters of benchmarks/resample.py, whose saved table the chapter reads
+        "(a 3° rotation and a 1.02 zoom)",
+    ],
+    "05_contrast_regression.ipynb": [
+        # the range of 8-bit pixels, a definition
+        "kept within 0–255",
+    ],
+    "04b_relief_orthorectification.ipynb": [
+        # a licence's name and a GDAL issue and pull request: references, not results
+        "Apache-2.0",
+        "GDAL issue 11711, pull request 11713",
+    ],
+    "01_systematic_distortions.ipynb": [
+        # the lecture's own words, quoted to be checked against each sensor's field of view
+        "together at ±7.5°",
+        "The lecture's \"±7.5°",
+        # a journal reference: volume, issue and pages
+        "53(7), 3847–3854",
+    ],
     "02b_crs_datums.ipynb": [
         # an outside comparison with IBGE's grid (EPSG:5528), not shipped yet: quoted until it is
         "up to 7.8 m apart at these GCPs",
