@@ -3,7 +3,7 @@
 import nbformat
 import pytest
 
-from notebook_runner import executed_notebook
+from notebook_runner import ROOT, executed_notebook
 from prose_numbers import chapters, glue_problems, typed_numbers
 
 CHAPTERS = chapters()
@@ -38,3 +38,29 @@ def test_the_scanner_finds_what_it_should(tmp_path):
                                                                 "mime_prefix": ""}})])])
     assert glue_problems(path, executed) == [
         "cell 0: {glue:text}`rms:.2f`: nothing glued as 'rms'"]
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=lambda path: path.name)
+def test_the_translation_keeps_every_glued_number(path):
+    # a translated paragraph is parsed without the notebook's glue data: its roles must name
+    # the notebook (DESIGN.md), and none may be lost or typed instead
+    import re
+
+    from babel.messages.pofile import read_po
+
+    po = ROOT / "locales" / "pt_BR" / "LC_MESSAGES" / "book" / (path.stem + ".po")
+    with open(po, "rb") as handle:
+        catalogue = read_po(handle)
+    role = re.compile(r"\{glue(:\w+)?\}`(?:[^`:]*\.ipynb::)?([^`]*)`")
+    wrong = []
+    for message in catalogue:
+        if not message.id or not message.string or message.fuzzy:
+            continue
+        english = sorted(match.group(2) for match in role.finditer(message.id))
+        portuguese = sorted(match.group(2) for match in role.finditer(message.string))
+        unqualified = [m.group(0) for m in role.finditer(message.string)
+                       if f"{path.name}::" not in m.group(0)]
+        if english != portuguese or unqualified:
+            wrong.append(f"{message.id[:70]!r}: English {english}, Portuguese {portuguese}, "
+                         f"not naming {path.name}: {unqualified}")
+    assert not wrong, "\n".join(wrong)
