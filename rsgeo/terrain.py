@@ -56,7 +56,7 @@ from .resample import METHODS, check_bands_first, interpolate
 __all__ = [
     "relief_displacement", "relief_displacement_photo", "height_error_budget",
     "RPCModel", "RPC_TERMS", "simple_rpc_dict", "fit_rpc", "dem_height", "orthorectify",
-    "PushbroomSensor", "fit_rpc_to_sensor",
+    "PushbroomSensor", "fit_rpc_to_sensor", "map_on_grid", "positional_error",
 ]
 
 # GDAL's RPCComputeTerms, in its order (L = longitude, P = latitude, H = height)
@@ -888,11 +888,14 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
 class PushbroomSensor:
     """A pushbroom scanner over a flat map plane, with a known geometry (for simulations).
 
-    The platform flies north along the map's y axis at ``altitude_m``; line
-    ``row`` is acquired when it is at y = ``y0 - row * line_step_m``
-    (rows go south, as images do), and the across-track detector array sees
-    view angles from ``centre_angle_deg - half_fov`` to ``+ half_fov``
-    (positive to the east), one angle per column. A ground point (x, y, h)
+    The platform flies south along the map's y axis at ``altitude_m`` (a
+    descending pass, as the daytime passes of Landsat and CBERS are): line
+    ``row`` is acquired when it is at y = ``y0 - row * line_step_m``, so the
+    first line is the northernmost and rows go south, as in a north-up map.
+    The across-track detector array sees view angles from
+    ``centre_angle_deg - half_fov`` to ``+ half_fov``, one angle per column,
+    with columns running west to east: a positive angle looks east (to the
+    platform's left, since it flies south). A ground point (x, y, h)
     is seen at ``tan(angle) = (x - x_nadir) / (altitude - h)``: its
     displacement from where a point at height 0 would be is h·tan(angle),
     :func:`relief_displacement`. Earth curvature and attitude changes are
@@ -1116,3 +1119,113 @@ def fit_rpc_to_sensor(sensor, crs, bounds, heights, n=15):
     lon, lat = _to_crs(x, y, crs, "EPSG:4326")
     col, row = sensor.project(x, y, h)
     return fit_rpc(lon, lat, h, col, row)
+
+
+# -- Checking an orthoimage on the image itself --------------------------------
+
+def map_on_grid(image, transform, dst_transform, dst_shape, method="bilinear", nodata=None):
+    """A map image resampled onto another grid of the same CRS (GDAL's kernels).
+
+    Each output cell centre is sent through ``~transform`` into ``image``
+    and interpolated there by :func:`rsgeo.resample.interpolate`: the true
+    ground on an orthoimage's grid, for :func:`positional_error`.
+
+    Parameters
+    ----------
+    image : 2-D ndarray
+        The map (e.g. the ground a simulation was made from).
+    transform, dst_transform : affine.Affine
+        Geotransforms of ``image`` and of the output grid, same CRS.
+    dst_shape : (rows, cols)
+        Output grid size.
+    method : {"nearest", "bilinear", "cubic"}
+    nodata : number or None
+        Value of cells outside ``image``.
+
+    Returns
+    -------
+    ndarray
+        ``image``'s dtype, ``dst_shape``.
+
+    Raises
+    ------
+    ValueError
+        If the image is not 2-D or the method is unknown.
+
+    Examples
+    --------
+    >>> import affine
+    >>> image = np.arange(16, dtype=np.float64).reshape(4, 4)
+    >>> gt = affine.Affine(10, 0, 0, 0, -10, 40)
+    >>> map_on_grid(image, gt, affine.Affine(20, 0, 0, 0, -20, 40), (2, 2)).tolist()
+    [[2.5, 4.5], [10.5, 12.5]]
+    """
+    image = as_image(image)
+    if image.ndim != 2:
+        raise ValueError(f"image must be 2-D, got shape {image.shape}")
+    check_choice(method, "method", METHODS)
+    x, y = np.broadcast_arrays(*_grid_centres(_as_gdal(dst_transform, "dst_transform"),
+                                              as_shape(dst_shape, "dst_shape")))
+    inverse = _gdal_inverse(_as_gdal(transform, "transform"))
+    cols = inverse[0] + x * inverse[1] + y * inverse[2]
+    rows = inverse[3] + x * inverse[4] + y * inverse[5]
+    return interpolate(image, cols, rows, method, nodata=nodata)
+
+
+def positional_error(image, truth, step=64, window=64, nodata=0, upsample=100, taper=True):
+    """Where a corrected image puts the ground, measured on the image against the truth.
+
+    ``truth`` is the true ground on the same grid (:func:`map_on_grid` of
+    the map a simulation was made from, or a reference orthoimage); at the
+    check points of a regular grid the local shift between the two images'
+    windows is measured by correlation (:func:`rsgeo.gcp.measure_shifts`;
+    Hann-tapered by default, which smooth images need), skipping windows that touch a ``nodata`` pixel of ``image``. This measures
+    the image itself (its DEM, model and resampling together), not the
+    model's fit at points.
+
+    Parameters
+    ----------
+    image, truth : (rows, cols) array_like
+        The corrected image and the truth, same grid.
+    step, window : int
+        Spacing of the check points and size of their windows, pixels.
+    nodata : number or None
+        ``image``'s value outside its footprint.
+    upsample : int
+        Sub-pixel precision: 1 / upsample pixel.
+    taper : bool
+        Hann-tapered cross-correlation (True) or phase correlation.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per check point: ``col``, ``row`` (its position),
+        ``dcol``, ``drow`` (the shift that moves ``image`` onto ``truth``,
+        pixels) and ``error`` (its length, pixels).
+
+    Raises
+    ------
+    ValueError
+        As :func:`rsgeo.gcp.measure_shifts`, or if no window lies wholly
+        inside the image's footprint.
+
+    Examples
+    --------
+    >>> truth = np.random.default_rng(0).random((128, 128))
+    >>> table = positional_error(np.roll(truth, 2, axis=1), truth, nodata=None)
+    >>> table["dcol"].round(1).tolist(), table["drow"].round(1).tolist()
+    ([-2.0, -2.0, -2.0, -2.0], [0.0, 0.0, 0.0, 0.0])
+    """
+    import pandas as pd
+
+    from .gcp import measure_shifts
+
+    image = np.asarray(image)
+    valid = None if nodata is None else image != nodata
+    points, shifts = measure_shifts(truth, image, step, window, upsample=upsample, taper=taper,
+                                    valid=valid)
+    if len(points) == 0:
+        raise ValueError("no check-point window lies wholly inside the image's footprint; "
+                         "use a smaller window or step")
+    return pd.DataFrame({"col": points[:, 0], "row": points[:, 1], "dcol": shifts[:, 0],
+                         "drow": shifts[:, 1], "error": np.hypot(shifts[:, 0], shifts[:, 1])})

@@ -15,8 +15,9 @@ import rasterio
 
 from rsgeo import exercises
 from rsgeo.terrain import (
-    PushbroomSensor, RPCModel, dem_height, fit_rpc, height_error_budget, orthorectify,
-    relief_displacement, relief_displacement_photo, simple_rpc_dict,
+    PushbroomSensor, RPCModel, dem_height, fit_rpc, height_error_budget, map_on_grid,
+    orthorectify, positional_error, relief_displacement, relief_displacement_photo,
+    simple_rpc_dict,
 )
 
 LON0, LAT0 = -34.9, -8.0
@@ -302,6 +303,43 @@ def test_orthorectify_removes_relief_displacement(scene):
     centre_lon = grid.c + (np.arange(300) + 0.5) * grid.a
     # bilinear on a smooth ramp: within a small fraction of a 20 m pixel (1 m ~ 1e-5 degree)
     assert np.abs(ortho - centre_lon[None, :]).max() < 2e-5
+
+
+def test_pushbroom_flies_south_with_columns_to_the_east():
+    """The docstring's geometry: line 0 is the northernmost, columns run west to east."""
+    sensor = PushbroomSensor(0.0, 1000.0, 700e3, 10.0, 1e-3, 101, 10.0)
+    x, y = sensor.ground(np.array([50.5, 50.5, 60.5]), np.array([0.0, 1.0, 1.0]), 0.0)
+    assert y[1] == y[0] - 10.0 and x[2] > x[1] > 0        # next line south; next column east
+    col, row = sensor.project(x, y, 0.0)
+    np.testing.assert_allclose([col, row], [[50.5, 50.5, 60.5], [0, 1, 1]], atol=1e-9)
+    # a positive view angle looks east: a hill there leans away from the nadir (east)
+    assert sensor.project(x[2], y[2], 500.0)[0] > 60.5
+
+
+def test_map_on_grid_is_the_identity_on_its_own_grid_and_halves_a_2x_grid():
+    image = np.random.default_rng(1).random((40, 30))
+    gt = affine.Affine(10, 0, 500, 0, -10, 900)
+    np.testing.assert_array_equal(map_on_grid(image, gt, gt, (40, 30)), image)
+    coarse = map_on_grid(image, gt, affine.Affine(20, 0, 500, 0, -20, 900), (20, 15))
+    np.testing.assert_allclose(coarse, (image[0::2, 0::2] + image[1::2, 0::2]
+                                        + image[0::2, 1::2] + image[1::2, 1::2]) / 4)
+
+
+def test_positional_error_measures_a_known_shift_on_the_image():
+    rng = np.random.default_rng(3)
+    from scipy.ndimage import gaussian_filter
+
+    from rsgeo.resample import interpolate
+
+    truth = gaussian_filter(rng.random((200, 200)), 1.0)         # smooth texture
+    rows, cols = np.mgrid[0:200, 0:200] + 0.5
+    moved = interpolate(truth, cols + 1.3, rows - 0.6, "bilinear", nodata=-1.0)
+    table = positional_error(moved, truth, step=48, window=48, nodata=-1.0)
+    assert len(table) >= 9
+    np.testing.assert_allclose(table[["dcol", "drow"]].median(), [1.3, -0.6], atol=0.06)
+    np.testing.assert_allclose(table["error"], np.hypot(table["dcol"], table["drow"]))
+    with pytest.raises(ValueError, match="footprint"):
+        positional_error(np.full((200, 200), -1.0), truth, step=48, window=48, nodata=-1.0)
 
 
 def _metric_dem(dem, dem_gt):
