@@ -2033,9 +2033,12 @@ def fit_transform(src, dst, kind, order=None):
     Every model follows the protocol of :class:`GeometricModel` and has
     ``kind`` and ``n_parameters``. ``inverse()`` is exact for linear, Helmert
     and projective (matrix inverse) and for polynomials (Newton's method);
-    a TPS's inverse is a second spline fitted the other way round, as GDAL
-    does. Helmert includes a reflection when the GCPs need one (map y up,
-    image rows down).
+    a TPS's ``inverse()`` solves the spline itself by Newton's method, to
+    ``tolerance`` times the GCPs' dst extent (a ``ValueError`` where it does
+    not converge), starting from :meth:`TPSModel.reverse`, the second spline
+    fitted the other way round, which is only approximately inverse between
+    the GCPs. Helmert includes a reflection when the GCPs need one (map y
+    up, image rows down).
 
     Parameters
     ----------
