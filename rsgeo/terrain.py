@@ -51,6 +51,7 @@ import numpy as np
 from numba import njit
 
 from ._checks import as_image, as_shape, check_choice
+from .gcp import measure_shifts
 from .resample import METHODS, check_bands_first, interpolate
 
 __all__ = [
@@ -1217,8 +1218,6 @@ def positional_error(image, truth, step=64, window=64, nodata=0, upsample=100, t
     ([-2.0, -2.0, -2.0, -2.0], [0.0, 0.0, 0.0, 0.0])
     """
     import pandas as pd
-
-    from .gcp import measure_shifts
 
     image = np.asarray(image)
     valid = None if nodata is None else image != nodata
