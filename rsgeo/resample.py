@@ -37,15 +37,22 @@ widens bilinear and cubic over 1/scale source pixels (its ``GWKResample``):
 taps, weights, order of sums and normalisation, and :func:`warp` computes the
 scale from the grids as gdalwarp does (:func:`grid_scale`). Without a nodata
 value (``nodata=None``) the output is gdalwarp's without ``-dstnodata``.
-So "bit for bit" holds for: an integer image (float32 outputs agree within
-one unit in the last place), with or without nodata, at any scale given the
-same XSCALE/YSCALE, and with gdalwarp's own scale when the output grid does
-not hang far over the source's edge (gdalwarp then splits the grid into
-chunks, each with its own scale); float64 arithmetic; and GDAL's exact
-transformer (``-et 0``; its default approximate transformer moves sample
-positions of non-linear mappings by up to 0.125 pixel). The GDAL is the one
-in the pinned rasterio wheels (3.10); GDAL 3.11 changes the normalisation
-without nodata and 3.13 keeps the 4-sample formulas down to scale 0.5.
+So "bit for bit" holds, as tested against GDAL 3.10.3 (the one in the pinned
+rasterio wheel; 3.11 changes the normalisation without nodata and 3.13 keeps
+the 4-sample formulas down to scale 0.5), for: integer, float32 and float64
+images, in float64 arithmetic; with a destination nodata (GDAL's general
+path, GWKRealCase) or without one (its no-mask kernels for Byte, Int16, UInt16
+and Float32; rsgeo follows each, see ``_bilinear_masked_at``); GDAL's
+exact transformer (``-et 0``), whose two geotransforms :func:`warp` applies
+in GDAL's order; and the same kernel scale: the XSCALE/YSCALE given, or
+gdalwarp's for the whole output grid. Two gdalwarp defaults differ: its
+approximate transformer (``-et 0.125``, which ``rasterio.warp.reproject``
+always uses) moves positions in their last bits, or by up to 0.125 pixel for
+non-linear mappings, which rounds some exact .5 ties of an enlargement the
+other way; and it computes the scale per chunk of the output, from the
+bounding box of each chunk's source window, which on a rotated source falls
+below 0.95 (1 / (cos θ + sin θ) for a square chunk) and widens the kernels
+where rsgeo's one scale does not.
 
 :func:`warp` refuses the two classic silent mistakes: a mapping in the wrong
 direction (image -> map, e.g. a raster's own geotransform instead of its
@@ -320,6 +327,9 @@ _BLOCK = 4096
 # "No affine mapping": the positions come as arrays (see _source_position).
 _NO_AFFINE = np.empty(0)
 _NO_POSITIONS = np.empty(0)
+# The types GDAL 3.10 warps with its no-mask kernels when there is no destination nodata
+# (GWK*NoMasksOrDstDensityOnly*); every other type goes through GWKRealCase.
+_NO_MASK_TYPES = ("uint8", "int16", "uint16", "float32")
 # Float types Numba cannot compute in are computed in this type, then cast back.
 _COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
                 np.dtype(np.longdouble): np.dtype(np.float64)}
@@ -369,9 +379,9 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
     """Run one method's kernel over ``size`` output pixels; return (out, pixels inside).
 
     ``out`` is (bands, size) in ``image``'s dtype. Positions come from the
-    arrays ``cols``, ``rows`` or, when ``to_source`` holds the six numbers of an
-    affine map (output pixel -> source pixel), are computed pixel by pixel
-    from an output grid ``row_length`` pixels wide.
+    arrays ``cols``, ``rows`` or, when ``to_source`` holds two GDAL geotransforms
+    (the output grid's pixel -> map, then map -> source pixel), are computed
+    pixel by pixel from an output grid ``row_length`` pixels wide.
     """
     bands = image if image.ndim == 3 else image[np.newaxis]
     dtype = bands.dtype
@@ -412,10 +422,17 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
                                    to_source, n_rows, row_length, out, fill, step, compare,
                                    work.kind in "ui", low, high, _RADIUS[method],
                                    float(xscale), float(yscale))
-        else:
+        elif method == "nearest":
             inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
                             to_source, n_rows, row_length, out, fill, step, compare,
                             work.kind in "ui", low, high)
+        else:
+            # GDAL's general path (GWKRealCase) with a destination nodata, and for the types
+            # without a specialised no-mask kernel
+            masked = avoid or dtype.name not in _NO_MASK_TYPES
+            inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
+                            to_source, n_rows, row_length, out, fill, step, compare,
+                            work.kind in "ui", low, high, masked)
     finally:
         numba.set_num_threads(previous)
     return (out if work == dtype else out.astype(dtype)), inside
@@ -538,16 +555,16 @@ def _pixel(bands, band, row, col):
 def _source_position(k, i, j, cols, rows, to_source):
     """Where output pixel k (row i, column j of the output grid) falls in the source.
 
-    Either read from the arrays of positions, or computed from the affine map
-    output pixel -> source pixel at the cell's centre (j + 0.5, i + 0.5), with
-    the operations of :func:`grid_positions`.
+    Either read from the arrays of positions, or computed at the cell's centre
+    (j + 0.5, i + 0.5) in GDAL's two steps (:func:`_corner_to_source`): output
+    pixel -> map, then map -> source pixel, as GDALGenImgProjTransform does
+    with GDAL's exact transformer. (Composing the two affine maps into one
+    first rounds differently in the last bit, which decides the exact .5
+    ties of an enlargement such as 10 m -> 4 m.)
     """
     if to_source.size == 0:
         return cols[_u(k)], rows[_u(k)]
-    x = j + 0.5
-    y = i + 0.5
-    return (to_source[0] * x + (to_source[1] * y + to_source[2]),
-            to_source[3] * x + (to_source[4] * y + to_source[5]))
+    return _corner_to_source(to_source, j + 0.5, i + 0.5)
 
 
 @njit(cache=True, inline="always")
@@ -621,11 +638,14 @@ def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
 def _bilinear_at(bands, band, col, row):
     """Bilinear value at (col, row): GDAL's GWKBilinearResampleNoMasks4SampleT.
 
-    The pixel centres are at half-integers, so the 2 x 2 window starts at
-    floor(col - 0.5), floor(row - 0.5); ratio_x and ratio_y are the weights of
-    its left column and top row. At the border, pixels outside the image are
-    left out and the weights of the others renormalised (GDAL's order: upper
-    left, upper right, lower right, lower left).
+    The path gdalwarp takes without a destination nodata for Byte, Int16,
+    UInt16 and Float32. The pixel centres are at half-integers, so the 2 x 2
+    window starts at floor(col - 0.5), floor(row - 0.5); ratio_x and ratio_y
+    are the weights of its left column and top row. Inside, each row is
+    interpolated along x, then the two rows along y. At the border, pixels
+    outside the image are left out and the weights of the others
+    renormalised (GDAL's order: upper left, upper right, lower right, lower
+    left).
     """
     height, width = bands.shape[1], bands.shape[2]
     left_f = np.floor(col - 0.5)
@@ -662,16 +682,69 @@ def _bilinear_at(bands, band, col, row):
     return accumulator / (divisor if divisor != 0.0 else 1.0)
 
 
+@njit(cache=True, inline="always")
+def _bilinear_masked_at(bands, band, col, row):
+    """Bilinear value at (col, row): GDAL's GWKBilinearResample4Sample.
+
+    The path gdalwarp takes (GWKRealCase) when the output has a destination
+    nodata (its validity mask) and, always, for the types without a
+    specialised kernel (Int8, Int32, UInt32, Int64, UInt64, Float64). The
+    same window and ratios as ``_bilinear_at``, computed in another
+    order: each pixel's weight is the product ratio_x * ratio_y first, and
+    the four weighted pixels are added one by one (upper left, upper right,
+    lower left, lower right) beside the sum of the weights, which divides
+    the total unless it is exactly 1. A window hanging off the left (top)
+    edge by one column (row) starts at 0 with ratio 1. The exact .5 ties of
+    an enlargement round differently in the two orders.
+    """
+    height, width = bands.shape[1], bands.shape[2]
+    left_f = np.floor(col - 0.5)
+    top_f = np.floor(row - 0.5)
+    ratio_x = 1.5 - (col - left_f)
+    ratio_y = 1.5 - (row - top_f)
+    left, top = int(left_f), int(top_f)
+    if left == -1:
+        left = 0
+        ratio_x = 1.0
+    if top == -1:
+        top = 0
+        ratio_y = 1.0
+    accumulator = 0.0
+    divisor = 0.0
+    if top < height:
+        weight_left = ratio_x * ratio_y
+        weight_right = (1.0 - ratio_x) * ratio_y
+        if left < width:
+            divisor += weight_left
+            accumulator += _pixel(bands, band, top, left) * weight_left
+        if left + 1 < width:
+            divisor += weight_right
+            accumulator += _pixel(bands, band, top, left + 1) * weight_right
+    if top + 1 < height:
+        weight_left = ratio_x * (1.0 - ratio_y)
+        weight_right = (1.0 - ratio_x) * (1.0 - ratio_y)
+        if left < width:
+            divisor += weight_left
+            accumulator += _pixel(bands, band, top + 1, left) * weight_left
+        if left + 1 < width:
+            divisor += weight_right
+            accumulator += _pixel(bands, band, top + 1, left + 1) * weight_right
+    if divisor == 1.0:
+        return accumulator
+    return accumulator / (divisor if divisor != 0.0 else 1.0)
+
+
 @njit(cache=True, parallel=True)
 def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
-                   is_int, low, high):
+                   is_int, low, high, masked):
     """Bilinear interpolation, pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
     is outside the image, write nodata; otherwise take the 2 x 2 neighbours
     whose centres surround it, weight each by how close it is along the row
-    and along the column (:func:`_bilinear_at`), round and store the sum.
-    Returns the number of output pixels that fell inside the source.
+    and along the column (``_bilinear_at``, or ``_bilinear_masked_at``
+    when ``masked``: GDAL's path with a destination nodata), round and store
+    the sum. Returns the number of output pixels that fell inside the source.
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
@@ -689,26 +762,45 @@ def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, 
                 continue
             landed_in_row += 1
             for band in range(n_bands):
-                value = _bilinear_at(bands, band, col, row)
+                if masked:
+                    value = _bilinear_masked_at(bands, band, col, row)
+                else:
+                    value = _bilinear_at(bands, band, col, row)
                 _store(out, band, k, value, step, nodata, is_int, low, high)
         landed[i] = landed_in_row
     return landed.sum()
 
 
+@njit(cache=True, inline="always")
+def _cubic_convolution(d, f0, f1, f2, f3):
+    """GDAL's CubicConvolution macro: Keys (a = -0.5) at the offset d from f1.
+
+    f1 + ½(d(f2 − f0) + d²(2f0 − 5f1 + 4f2 − f3) + d³(3(f1 − f2) + f3 − f0)),
+    with d² = d·d and d³ = d²·d, evaluated left to right as GDAL does.
+    """
+    d2 = d * d
+    d3 = d2 * d
+    return f1 + 0.5 * (d * (f2 - f0) + d2 * (2.0 * f0 - 5.0 * f1 + 4.0 * f2 - f3)
+                       + d3 * (3.0 * (f1 - f2) + f3 - f0))
+
+
 @njit(cache=True, parallel=True)
 def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
-                is_int, low, high):
-    """Cubic convolution (GDAL's GWKCubicResampleNoMasks4SampleT), pixel by pixel.
+                is_int, low, high, masked):
+    """Cubic convolution, pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
     is outside the image, write nodata. Otherwise take the 4 x 4 neighbours
     around it: the pixel left of and above the position (GDAL truncates
     col - 0.5 and row - 0.5 towards zero) and one more on each side. Weight
-    each row of four with Keys' weights of the offset dx along the row, then
-    the four row sums with the weights of dy (GDAL's CONVOL4, in its order of
-    additions); round and store. Where the 4 x 4 window leaves the image,
-    fall back to bilinear, as GDAL does.
-    Returns the number of output pixels that fell inside the source.
+    each row of four with Keys' weights of the offset dx along the row
+    (GDAL's CONVOL4, in its order of additions), then combine the four row
+    sums down the column: with the weights of dy by CONVOL4 again when
+    ``masked`` (GDAL's GWKCubicResample4Sample, its path with a destination
+    nodata), else by GDAL's CubicConvolution formula in dy, dy², dy³
+    (GWKCubicResampleNoMasks4SampleT). Round and store. Where the 4 x 4
+    window leaves the image, fall back to the same path's bilinear, as GDAL
+    does. Returns the number of output pixels that fell inside the source.
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
@@ -732,38 +824,38 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
             left, top = int(left_f), int(top_f)
             if not (left >= 1 and left + 2 < width and top >= 1 and top + 2 < height):
                 for band in range(n_bands):
-                    value = _bilinear_at(bands, band, col, row)
+                    if masked:
+                        value = _bilinear_masked_at(bands, band, col, row)
+                    else:
+                        value = _bilinear_at(bands, band, col, row)
                     _store(out, band, k, value, step, nodata, is_int, low, high)
                 continue
             wx0, wx1, wx2, wx3 = _cubic_weights(dx)
             wy0, wy1, wy2, wy3 = _cubic_weights(dy)
             c = left - 1
             for band in range(n_bands):
+                # CONVOL4 along each of the four rows
                 r = top - 1
-                # CONVOL4 along each of the four rows, then down the column
-                along = wx0 * _pixel(bands, band, r, c)
-                along += wx1 * _pixel(bands, band, r, c + 1)
-                along += wx2 * _pixel(bands, band, r, c + 2)
-                along += wx3 * _pixel(bands, band, r, c + 3)
-                value = wy0 * along
+                along0 = (wx0 * _pixel(bands, band, r, c) + wx1 * _pixel(bands, band, r, c + 1)
+                          + wx2 * _pixel(bands, band, r, c + 2)
+                          + wx3 * _pixel(bands, band, r, c + 3))
                 r += 1
-                along = wx0 * _pixel(bands, band, r, c)
-                along += wx1 * _pixel(bands, band, r, c + 1)
-                along += wx2 * _pixel(bands, band, r, c + 2)
-                along += wx3 * _pixel(bands, band, r, c + 3)
-                value += wy1 * along
+                along1 = (wx0 * _pixel(bands, band, r, c) + wx1 * _pixel(bands, band, r, c + 1)
+                          + wx2 * _pixel(bands, band, r, c + 2)
+                          + wx3 * _pixel(bands, band, r, c + 3))
                 r += 1
-                along = wx0 * _pixel(bands, band, r, c)
-                along += wx1 * _pixel(bands, band, r, c + 1)
-                along += wx2 * _pixel(bands, band, r, c + 2)
-                along += wx3 * _pixel(bands, band, r, c + 3)
-                value += wy2 * along
+                along2 = (wx0 * _pixel(bands, band, r, c) + wx1 * _pixel(bands, band, r, c + 1)
+                          + wx2 * _pixel(bands, band, r, c + 2)
+                          + wx3 * _pixel(bands, band, r, c + 3))
                 r += 1
-                along = wx0 * _pixel(bands, band, r, c)
-                along += wx1 * _pixel(bands, band, r, c + 1)
-                along += wx2 * _pixel(bands, band, r, c + 2)
-                along += wx3 * _pixel(bands, band, r, c + 3)
-                value += wy3 * along
+                along3 = (wx0 * _pixel(bands, band, r, c) + wx1 * _pixel(bands, band, r, c + 1)
+                          + wx2 * _pixel(bands, band, r, c + 2)
+                          + wx3 * _pixel(bands, band, r, c + 3))
+                # then down the column
+                if masked:
+                    value = wy0 * along0 + wy1 * along1 + wy2 * along2 + wy3 * along3
+                else:
+                    value = _cubic_convolution(dy, along0, along1, along2, along3)
                 _store(out, band, k, value, step, nodata, is_int, low, high)
         landed[i] = landed_in_row
     return landed.sum()
@@ -1053,7 +1145,8 @@ def grid_positions(shape, transform=None, first_row=0):
     a, b, c, d, e, f = (transform if transform is not None else affine.Affine.identity())[:6]
     cols = np.arange(shape[1]) + 0.5
     rows = (np.arange(first_row, first_row + shape[0]) + 0.5)[:, np.newaxis]
-    return a * cols + (b * rows + c), d * cols + (e * rows + f)
+    # GDAL's order (GDALGenImgProjTransform, GDALApplyGeoTransform): c + col * a + row * b
+    return c + cols * a + rows * b, f + cols * d + rows * e
 
 
 def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
@@ -1099,8 +1192,10 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         from the grids as gdalwarp does for one chunk: output columns (rows)
         over the width (height) in source pixels of the bounding box of where
         the output grid's edges fall in the source (:func:`grid_scale`).
-        gdalwarp splits a grid that hangs far over the source's edge into
-        chunks with their own scales; rsgeo uses one.
+        gdalwarp cuts a large grid into chunks (by its warp memory, or where
+        a chunk's source window is mostly empty) and gives each its own
+        scale, below 0.95 on a rotated source even at the same pixel size;
+        rsgeo uses one. Give both the same scale to compare them.
 
     Returns
     -------
@@ -1140,18 +1235,15 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     bands = image.shape[0] if image.ndim == 3 else 1
     out = np.empty((bands, out_rows, out_cols), dtype=image.dtype)
     if isinstance(mapping, affine.Affine):
-        # an affine map: each output pixel's source position is computed in the kernel
-        to_source = np.array((mapping @ to_map)[:6], dtype=np.float64)
-        # average takes cell corners through the two geotransforms, as GDAL does
+        # an affine map: each output pixel's source position (or average's cell corners)
+        # is computed in the kernel through the two geotransforms, as GDAL does
         two_steps = np.array(to_map.to_gdal() + mapping.to_gdal(), dtype=np.float64)
         flat, landed = _resample(image, method, nodata, num_threads, _NO_POSITIONS,
-                                 _NO_POSITIONS, two_steps if method == "average" else to_source,
-                                 out_rows * out_cols, out_cols, scale)
+                                 _NO_POSITIONS, two_steps, out_rows * out_cols, out_cols, scale)
         out = flat.reshape(out.shape)
         if not landed:
-            a, b, c, d, e, f = to_source
-            x, y = np.array([0.5, out_cols - 0.5]), np.array([[0.5], [out_rows - 0.5]])
-            corner_cols, corner_rows = a * x + (b * y + c), d * x + (e * y + f)
+            x, y = to_map @ (np.array([0.5, out_cols - 0.5]), np.array([[0.5], [out_rows - 0.5]]))
+            corner_cols, corner_rows = mapping @ (x, y)
             spans = [(corner_cols.min(), corner_cols.max(), corner_rows.min(), corner_rows.max())]
     else:
         landed = 0

@@ -134,20 +134,42 @@ def gdalwarp_reproject(image, src_transform, dst_transform, shape, method, nodat
 
     Unlike :func:`gdal_warp` (a VRTWarpedDataset, which computes the scale of
     each chunk from its padded source window), this is the path of
-    ``gdalwarp``: the scale comes from the unpadded source window
-    (``dfSrcXSizeRaw``). Source and destination share one CRS, so the map is
-    affine and GDAL's approximate transformer is exact for it. ``nodata`` None:
-    no destination nodata, the output starts at 0. ``warp_options``, e.g.
-    ``XSCALE="0.5"``, are passed to GDAL as warp options.
+    ``gdalwarp``: GDALWarpOperation::ChunkAndWarpImage, the scale from the
+    unpadded source window (``dfSrcXSizeRaw``). Two things make it differ
+    from :func:`gdal_warp` beyond the scale (checked with rasterio 1.4.4,
+    GDAL 3.10.3):
+
+    * rasterio's ``_reproject`` always wraps GDAL's transformer in the
+      approximate transformer with a 0.125-pixel threshold (gdalwarp's
+      default ``-et 0.125``; its ``tolerance`` argument is ignored). For an
+      affine map the linear interpolation along each output row is exact in
+      real numbers but not in floating point: positions move in the last
+      bits, so exact .5 ties (an enlargement such as 10 m -> 4 m) round the
+      other way for about 0.5 % of bilinear pixels. rsgeo follows the exact
+      transformer (``gdalwarp -et 0``), not this.
+    * given an array, ``_reproject`` replaces ``dst_nodata`` by
+      ``dst_nodata or src_nodata``, so a destination nodata of 0 is silently
+      dropped. The destination here is therefore a dataset band carrying
+      ``nodata``, which keeps it (GDAL's DstValid mask, GWKRealCase).
+
+    ``nodata`` None: no destination nodata, the output starts at 0.
+    ``warp_options``, e.g. ``XSCALE="0.5"``, are passed to GDAL as warp options.
     """
     from rasterio.warp import Resampling, reproject
 
     image = np.asarray(image)
-    out = np.zeros(image.shape[:-2] + tuple(shape), dtype=image.dtype)
-    reproject(image, out, src_transform=src_transform, src_crs=crs, dst_transform=dst_transform,
-              dst_crs=crs, resampling=getattr(Resampling, method), src_nodata=None, tolerance=0,
-              dst_nodata=nodata, init_dest_nodata=True, **warp_options)
-    return out
+    bands = image if image.ndim == 3 else image[np.newaxis]
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, "destination.tif")
+        with rasterio.open(path, "w+", driver="GTiff", width=shape[1], height=shape[0],
+                           count=bands.shape[0], dtype=bands.dtype, crs=crs,
+                           transform=dst_transform, nodata=nodata) as dataset:
+            reproject(bands, rasterio.band(dataset, list(range(1, bands.shape[0] + 1))),
+                      src_transform=src_transform, src_crs=crs,
+                      resampling=getattr(Resampling, method), src_nodata=None,
+                      dst_nodata=nodata, init_dest_nodata=True, **warp_options)
+            out = dataset.read()
+    return out if image.ndim == 3 else out[0]
 
 
 def gdal_suggested_grid(shape, transform=None, gcps=None, crs="EPSG:29191"):

@@ -35,13 +35,9 @@ def test_affine_warp_matches_gdal_bit_for_bit(method, dtype):
     cols, rows = ~SOURCE_TRANSFORM @ (x, y)
     got = interpolate(image, cols, rows, method, nodata=0)
     assert got.dtype == expected.dtype
-    if dtype == "float32" and method != "nearest":
-        # GDAL's float path orders a few operations differently: about 1 pixel in 8000
-        # differs by one unit in the last place of float32; integer outputs are exact.
-        np.testing.assert_array_max_ulp(got, expected, maxulp=1)
-        assert np.count_nonzero(got != expected) < got.size / 2000
-    else:
-        assert np.count_nonzero(got != expected) == 0
+    # float32 too: with a destination nodata GDAL's general path (GWKRealCase) weights and
+    # adds in its own order, which rsgeo follows
+    assert np.count_nonzero(got != expected) == 0
     # the same footprint: GDAL's AvoidNoData keeps valid pixels off the nodata value too
     inside = (cols >= 0) & (cols < 400) & (rows >= 0) & (rows < 300)
     assert np.array_equal(expected != 0, inside) or method == "nearest"
@@ -352,11 +348,7 @@ def test_no_nodata_matches_gdal_without_dstnodata(method, dtype):
     x, y = grid_positions(shape, dst_transform)
     cols, rows = ~SOURCE_TRANSFORM @ (x, y)
     got = interpolate(image, cols, rows, method, nodata=None)
-    if dtype == "float32" and method != "nearest":
-        np.testing.assert_array_max_ulp(got, expected, maxulp=1)
-        assert np.count_nonzero(got != expected) < got.size / 2000
-    else:
-        assert np.count_nonzero(got != expected) == 0
+    assert np.count_nonzero(got != expected) == 0
     inside = (cols >= 0) & (cols < 400) & (rows >= 0) & (rows < 300)
     assert (got[~inside] == 0).all()
 
@@ -649,3 +641,112 @@ def test_grid_extent_check_recognises_mistakes(answer, hint):
         exercises.check_grid_extent(..., shape, HRC_TRANSFORM, 20)
     with pytest.raises(ValueError, match="resolution must be"):
         exercises.check_grid_extent(answer, shape, HRC_TRANSFORM, 0)
+
+
+# -- the reference: which GDAL, which path ----------------------------------------
+# Every bit-for-bit test above and below compares with GDAL 3.10.3, the one inside the locked
+# rasterio 1.4.4 wheel, through a VRTWarpedDataset with GDAL's exact transformer (gdal_warp):
+# `gdalwarp -et 0`. A destination nodata there sends GDAL through GWKRealCase (bilinear
+# GWKBilinearResample4Sample, cubic GWKCubicResample4Sample); without one, Byte, Int16, UInt16
+# and Float32 go through the no-mask kernels (GWKBilinearResampleNoMasks4SampleT,
+# GWKCubicResampleNoMasks4SampleT). gdalwarp_reproject is gdalwarp's default path instead
+# (approximate transformer, chunked, the scale per chunk).
+
+import rasterio  # noqa: E402
+
+from gdal_reference import gdalwarp_reproject as _default_gdalwarp  # noqa: E402
+
+
+def test_the_reference_is_the_locked_gdal():
+    # the claims of tests/test_resample.py, the README and chapter 4 were measured with this
+    # GDAL; another one (a new lock) must be checked again before they are repeated
+    assert rasterio.__gdal_version__ == "3.10.3"
+
+
+TIE_GRID = (affine.Affine(4.0, 0, 500_000.0, 0, -4.0, 7_400_000.0), (500, 750))
+
+
+def composed_positions(shape, dst_transform):
+    """Source positions from the composed affine map, as rsgeo computed them before."""
+    a, b, c, d, e, f = (~SOURCE_TRANSFORM @ dst_transform)[:6]
+    x = np.arange(shape[1]) + 0.5
+    y = (np.arange(shape[0]) + 0.5)[:, np.newaxis]
+    return a * x + (b * y + c), d * x + (e * y + f)
+
+
+@pytest.mark.parametrize("method", ["bilinear", "cubic"])
+@pytest.mark.parametrize("nodata", [0, None])
+@pytest.mark.parametrize("dtype", ["uint8", "int16", "uint16", "int32", "float32", "float64"])
+def test_an_enlargement_by_2_5_matches_gdal_on_every_tie(method, nodata, dtype):
+    # North-up 10 m -> 4 m (scale 2.5): many values fall exactly half-way between two
+    # integers, where the last bit of a position and the order of the kernel's operations
+    # decide the rounding. GDAL takes each output centre to the map and back through the two
+    # geotransforms (c + col * a + row * b, twice), and its general path (a destination nodata,
+    # or a type without a no-mask kernel) adds the four weighted pixels in another order than
+    # its no-mask bilinear. rsgeo did neither before: 1.2 % of the bilinear pixels differed.
+    image = noise((200, 300), dtype, seed=0)
+    dst_transform, shape = TIE_GRID
+    expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape, method,
+                         nodata)
+    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method=method, nodata=nodata)
+    assert np.count_nonzero(got != expected) == 0
+
+
+def test_the_enlargement_by_2_5_is_a_case_of_ties():
+    # the test above can fail: composed positions, or the other path's kernel, round
+    # differently on more than 1 % of the bilinear pixels
+    image = noise((200, 300), seed=0)
+    dst_transform, shape = TIE_GRID
+    for nodata in (0, None):
+        expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape,
+                             "bilinear", nodata)
+        cols, rows = composed_positions(shape, dst_transform)
+        composed = interpolate(image, cols, rows, "bilinear", nodata=nodata)
+        assert np.count_nonzero(composed != expected) > 0.01 * image.size
+    x, y = grid_positions(shape, dst_transform)
+    cols, rows = ~SOURCE_TRANSFORM @ (x, y)
+    plain = interpolate(image, cols, rows, "bilinear", nodata=None)       # no-mask kernel
+    general = interpolate(image, cols, rows, "bilinear", nodata=0)        # GWKRealCase
+    differ = np.count_nonzero(plain != general)
+    assert differ > 0 and (np.abs(plain.astype(int) - general) <= 1).all()
+
+
+@pytest.mark.parametrize("nodata", [0, None])
+def test_gdalwarp_s_default_transformer_rounds_some_ties_the_other_way(nodata):
+    # gdalwarp's default (and rasterio's reproject, always) interpolates the positions along
+    # each row (GDALApproxTransform, 0.125 pixel): exact in real numbers for an affine map, not
+    # in the last bits. rsgeo follows the exact transformer; the two differ only on .5 ties.
+    image = noise((200, 300), seed=0)
+    dst_transform, shape = TIE_GRID
+    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method="bilinear", nodata=nodata)
+    default = _default_gdalwarp(image, SOURCE_TRANSFORM, dst_transform, shape, "bilinear", nodata)
+    exact = warp(image.astype(np.float64), ~SOURCE_TRANSFORM, shape, dst_transform,
+                 method="bilinear", nodata=None)
+    differ = got != default
+    assert 0.001 * got.size < np.count_nonzero(differ) < 0.01 * got.size
+    assert (np.abs(got.astype(int) - default) <= 1).all()
+    np.testing.assert_allclose(exact[differ] % 1, 0.5, atol=1e-9)
+
+
+@pytest.mark.parametrize("method", ["bilinear", "cubic"])
+def test_gdalwarp_widens_its_kernels_per_chunk_on_a_rotated_footprint(method):
+    # A source rotated 13 degrees warped onto its own footprint grid at the same pixel size.
+    # rsgeo's one scale for the grid is above 1 (plain kernels), as a VRT of GDAL's gives; but
+    # gdalwarp splits the grid into chunks, and the bounding box of a chunk's source window is
+    # cos + sin = 1.2 times wider than the chunk: scale 0.83 < 0.95, widened (blurred) kernels.
+    # With -wo XSCALE=1 -wo YSCALE=1 gdalwarp agrees with rsgeo pixel for pixel.
+    from rsgeo.resample import suggested_grid
+
+    image = noise((400, 500), seed=1)
+    rotated = SOURCE_TRANSFORM @ affine.Affine.rotation(13)
+    dst_transform, shape = suggested_grid(image.shape, rotated, resolution=10.0)
+    assert min(grid_scale(~rotated, shape, dst_transform, image.shape)) > 1
+    got = warp(image, ~rotated, shape, dst_transform, method=method, nodata=0)
+    valid = got != 0
+    vrt = gdal_warp(image, affine_source(rotated), dst_transform, shape, method, 0)
+    assert np.count_nonzero(got != vrt) == 0
+    default = _default_gdalwarp(image, rotated, dst_transform, shape, method, 0)
+    assert np.count_nonzero(got[valid] != default[valid]) > 0.5 * valid.sum()
+    fixed = _default_gdalwarp(image, rotated, dst_transform, shape, method, 0, XSCALE="1",
+                              YSCALE="1")
+    assert np.count_nonzero(got != fixed) == 0
