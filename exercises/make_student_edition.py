@@ -83,6 +83,15 @@ def make_student_edition(output):
                             config, count=1, flags=re.M)
     if count != 1:
         raise ValueError("_config.yml has no `execute:` section to exclude the exercises from")
+    # its chapters are the instructors' chapters, code for code, and jupyter-cache matches a
+    # notebook by its code: once the course's book is built, the edition reuses its executions
+    # and runs no chapter again (a chapter changed since then runs, and joins that cache)
+    cache = ROOT / "_build" / ".jupyter_cache"
+    if cache.exists():
+        config, count = re.subn(r"^(  execute_notebooks: cache.*\n)", rf"\1  cache: {cache}\n",
+                                config, count=1, flags=re.M)
+        if count != 1:
+            raise ValueError("_config.yml does not execute into a cache (execute_notebooks: cache)")
     config = re.sub(r"^title:\s*(.*)$", r"title: \1 (student edition)", config, count=1, flags=re.M)
     # the edition is built alone: no Portuguese book beside it for the language switch to open
     config, count = re.subn(r"^(\s*i18n_other_book:).*$", r'\1 ""', config, count=1, flags=re.M)
