@@ -1,10 +1,10 @@
 """Experiments on the matchers of :mod:`rsgeo.matching` (chapter 6's tables; beyond the paper).
 
-The harness behind ``python benchmarks/matching.py`` and chapter 6's live run:
-seeded synthetic meshes (:func:`rsgeo.synthetic.synthetic_meshes`) and the real
-CBERS scene, each searched by the paper's GA and its peers, each answer compared
-with the true matching and with the certified optimum of the fitness
-(:func:`rsgeo.matching.optimum_match`).
+The harness behind ``python benchmarks/matching.py`` and chapter 6's live run (course tooling,
+not part of rsgeo; the chapter imports it from this folder): seeded synthetic meshes
+(:func:`rsgeo.synthetic.synthetic_meshes`) and the real CBERS scene, each searched by the
+paper's GA and its peers, each answer compared with the true matching and with the certified
+optimum of the fitness (:func:`rsgeo.matching.optimum_match`).
 """
 
 import time
@@ -13,20 +13,30 @@ import affine
 import numpy as np
 import pandas as pd
 
-from . import data, regions, resample
-from ._checks import check_choice
-from .matching import (VARIANTS, Mesh, exhaustive_match, fitness, genetic_match, optimum_match,
-                       qap_match, true_matching)
-from .synthetic import synthetic_meshes
+from rsgeo import data, regions, resample
+from rsgeo.matching import (
+    VARIANTS,
+    Mesh,
+    exhaustive_match,
+    fitness,
+    genetic_match,
+    optimum_match,
+    qap_match,
+    true_matching,
+)
+from rsgeo.synthetic import synthetic_meshes
 
 __all__ = ["MATCHERS", "success_table", "fitness_comparison", "real_scene", "real_table"]
 
-#: The matchers compared by :func:`success_table`: name -> matcher(reference, adjustment, alpha, seed).
+#: The matchers compared by :func:`success_table`:
+#: name -> matcher(reference, adjustment, alpha, seed).
 MATCHERS = {
-    "GA, binary (the paper)": lambda ref, adj, alpha, seed: genetic_match(ref, adj, alpha, seed=seed),
+    "GA, binary (the paper)": lambda ref, adj, alpha, seed: genetic_match(ref, adj, alpha,
+                                                                          seed=seed),
     "GA, integer": lambda ref, adj, alpha, seed: genetic_match(ref, adj, alpha, seed=seed,
                                                                encoding="integer"),
-    "QAP (SciPy FAQ, 20 restarts)": lambda ref, adj, alpha, seed: qap_match(ref, adj, alpha, seed=seed),
+    "QAP (SciPy FAQ, 20 restarts)": lambda ref, adj, alpha, seed: qap_match(ref, adj, alpha,
+                                                                            seed=seed),
 }
 
 
@@ -107,15 +117,17 @@ def success_table(sizes=(5, 8), seeds=range(30), alpha=0.5, shrink=None, matcher
                    + f"; it is the truth in {is_truth}")
         for name, runs in results.items():
             seconds = [s for _, s in runs]
+            answers = [(result, truth) for (result, _), (_, _, truth) in zip(runs, cases)]
             rows.append({
                 "n": n, "matcher": name, "runs": len(seeds),
                 "optimum reached (%)": 100 * np.mean([r.fitness >= b - 1e-9
                                                       for (r, _), b in zip(runs, best)]),
                 "exact matches (%)": 100 * np.mean([np.array_equal(r.solution, truth)
-                                                    for (r, _), (_, _, truth) in zip(runs, cases)]),
+                                                    for r, truth in answers]),
                 "segments right (%)": 100 * np.mean([np.mean(r.solution == truth)
-                                                     for (r, _), (_, _, truth) in zip(runs, cases)]),
-                "mean s/run": np.mean(seconds), "worst s/run": np.max(seconds), "optimum": meaning})
+                                                     for r, truth in answers]),
+                "mean s/run": np.mean(seconds), "worst s/run": np.max(seconds),
+                "optimum": meaning})
     return pd.DataFrame(rows).set_index(["n", "matcher"])
 
 
@@ -162,25 +174,32 @@ def fitness_comparison(sizes=(5, 6), seeds=range(30), alphas=(0.5, 0.7), shrink_
     [100.0, 100.0, 100.0, 100.0]
     """
     for variant in variants:
-        check_choice(variant, "variant", VARIANTS)
+        if variant not in VARIANTS:
+            raise ValueError(f"unknown variant {variant!r}; choose one of "
+                             f"{', '.join(map(repr, VARIANTS))}")
     if any(not 3 <= int(n) <= 7 for n in sizes):
-        raise ValueError(f"sizes must be 3 to 7 segments (exhaustive search over (n + 1)^n), got {list(sizes)}")
+        raise ValueError(f"sizes must be 3 to 7 segments (exhaustive search over (n + 1)^n), got "
+                         f"{list(sizes)}")
     seeds = list(seeds)
     rows = []
-    for case, shrink in (("one-to-one", None), (f"one segment at {shrink_share:.0%}", (2, shrink_share))):
+    cases = (("one-to-one", None), (f"one segment at {shrink_share:.0%}", (2, shrink_share)))
+    for case, shrink in cases:
         for n in sizes:
             for alpha in alphas:
                 counts = {variant: [0, 0, 0] for variant in variants}
                 for seed in seeds:
                     reference, adjustment, truth = synthetic_meshes(n, seed=seed, shrink=shrink)
                     for variant in variants:
-                        best = exhaustive_match(reference, adjustment, alpha, one_to_one=False, variant=variant)
-                        ga = genetic_match(reference, adjustment, alpha, seed=seed, variant=variant)
+                        best = exhaustive_match(reference, adjustment, alpha, one_to_one=False,
+                                                variant=variant)
+                        ga = genetic_match(reference, adjustment, alpha, seed=seed,
+                                           variant=variant)
                         counts[variant][0] += np.array_equal(best.solution, truth)
                         counts[variant][1] += np.array_equal(ga.solution, truth)
                         counts[variant][2] += ga.fitness >= best.fitness - 1e-9
                 for variant, (optimum, ga_truth, ga_optimum) in counts.items():
-                    rows.append({"case": case, "n": n, "a": alpha, "fitness": variant, "runs": len(seeds),
+                    rows.append({"case": case, "n": n, "a": alpha, "fitness": variant,
+                                 "runs": len(seeds),
                                  "optimum is the truth (%)": 100 * optimum / len(seeds),
                                  "GA finds the truth (%)": 100 * ga_truth / len(seeds),
                                  "GA finds the optimum (%)": 100 * ga_optimum / len(seeds)})
@@ -188,7 +207,7 @@ def fitness_comparison(sizes=(5, 6), seeds=range(30), alphas=(0.5, 0.7), shrink_
 
 
 def real_scene():
-    """Chapter 6's real scene: the CBERS-2B CCD NDVI (20 m) against a 30 m copy, rotated and shifted.
+    """Chapter 6's real scene: CBERS-2B CCD NDVI (20 m) against a 30 m copy, rotated and shifted.
 
     The reference keeps the 8 largest forest segments (NDVI above 0.55) of the
     scene; the adjustment, the same ground resampled to 30 m pixels, rotated
@@ -215,7 +234,8 @@ def real_scene():
                                method="bilinear", nodata=-1.0, scale=1.0)
     reference = regions.keep_largest(
         regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
-    moved = regions.keep_largest(regions.forest_segments(adjustment, threshold=0.55, min_area=11), 8)
+    moved = regions.keep_largest(
+        regions.forest_segments(adjustment, threshold=0.55, min_area=11), 8)
     to_reference = ~ccd.transform @ adjustment_transform
     mapped = np.column_stack(to_reference @ (moved.centroids[:, 0], moved.centroids[:, 1]))
     truth, _ = true_matching(reference.centroids, mapped, tolerance=10)
@@ -258,7 +278,8 @@ def real_table(seeds=range(30), alpha=0.5):
     rows = []
     for variant in VARIANTS:
         best = exhaustive_match(reference, adjustment, alpha, one_to_one=False, variant=variant)
-        runs = [genetic_match(reference, adjustment, alpha, seed=seed, variant=variant) for seed in seeds]
+        runs = [genetic_match(reference, adjustment, alpha, seed=seed, variant=variant)
+                for seed in seeds]
         rows.append({"case": "CBERS-2B CCD, 20 m against 30 m", "n": len(adjustment), "a": alpha,
                      "fitness": variant, "runs": len(seeds), "truth": str(truth.tolist()),
                      "FA of the truth": fitness(truth, reference, adjustment, alpha, variant),

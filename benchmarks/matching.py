@@ -4,18 +4,19 @@
 
 Writes three tables under benchmarks/results/ (chapter 6 of the book loads and shows them),
 each CSV opening with '# key: value' lines that give the command, the seeds and the machine.
-The experiments themselves live in rsgeo.experiments (the chapter's live run calls the same code):
+The experiments themselves live in benchmarks/ga_experiments.py (the chapter's live run calls
+the same code):
 
-- matching_solvers.csv: rsgeo.experiments.success_table: the paper's binary GA, an integer-coded
+- matching_solvers.csv: ga_experiments.success_table: the paper's binary GA, an integer-coded
   GA and SciPy's quadratic assignment (FAQ, 20 restarts) on synthetic meshes of each size (100
   seeds): how often each reaches the optimum of the paper's fitness over all (n + 1)^n solutions
   (certified by branch and bound, rsgeo.matching.optimum_match; the "optimum" column says in how
   many seeds) and the true matching, with mean and worst seconds per run.
-- matching_fitness.csv: rsgeo.experiments.fitness_comparison: how often the exhaustive optimum
+- matching_fitness.csv: ga_experiments.fitness_comparison: how often the exhaustive optimum
   of the paper's fitness and of the "compact" variant is the true matching, and how often the
   paper's GA searching each finds the truth and the optimum (n = 5 and 6, a = 0.5 and 0.7, as-is
   and with one segment at 31 % of its area; 30 seeds).
-- matching_real.csv: rsgeo.experiments.real_table: the same for chapter 6's real scene (CBERS-2B
+- matching_real.csv: ga_experiments.real_table: the same for chapter 6's real scene (CBERS-2B
   CCD NDVI, 20 m, against a 30 m copy rotated 5° and shifted): exhaustive search over all 9^8
   solutions and the GA with each of the seeds. --no-real skips it.
 """
@@ -29,9 +30,8 @@ import numba
 import pandas as pd
 import scipy
 
-from rsgeo import experiments
-
-from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
+import ga_experiments  # benchmarks/ga_experiments.py
+from machine import describe, header_lines  # benchmarks/machine.py
 
 RESULTS = Path(__file__).resolve().parent / "results"
 
@@ -43,9 +43,11 @@ def machine():
 
 def save(table, name, seeds, seconds):
     RESULTS.mkdir(exist_ok=True)
-    header = {"command": f"python benchmarks/{Path(__file__).name} {' '.join(sys.argv[1:])}".strip(),
+    command = f"python benchmarks/{Path(__file__).name} {' '.join(sys.argv[1:])}".strip()
+    header = {"command": command,
               "seeds": f"{seeds[0]} to {seeds[-1]} ({len(seeds)} seeds)", **machine(),
-              "seconds": f"{seconds:.0f} (the whole table; times depend on the machine and its load)"}
+              "seconds": f"{seconds:.0f} (the whole table; times depend on the machine and its "
+                         "load)"}
     text = header_lines(header)
     path = RESULTS / name
     path.write_text(text + table.to_csv(index=False, float_format="%.4f"))
@@ -65,10 +67,12 @@ if __name__ == "__main__":
     seeds, fitness_seeds = list(range(arguments.seeds)), list(range(arguments.fitness_seeds))
     tables = {
         "solvers": ("matching_solvers.csv", seeds,
-                    lambda: experiments.success_table(sizes=arguments.sizes, seeds=seeds).reset_index()),
+                    lambda: ga_experiments.success_table(sizes=arguments.sizes,
+                                                         seeds=seeds).reset_index()),
         "fitness": ("matching_fitness.csv", fitness_seeds,
-                    lambda: experiments.fitness_comparison(seeds=fitness_seeds)),
-        "real": ("matching_real.csv", fitness_seeds, lambda: experiments.real_table(fitness_seeds)),
+                    lambda: ga_experiments.fitness_comparison(seeds=fitness_seeds)),
+        "real": ("matching_real.csv", fitness_seeds,
+                 lambda: ga_experiments.real_table(fitness_seeds)),
     }
     with pd.option_context("display.width", 200, "display.max_columns", 12,
                            "display.max_colwidth", 60):

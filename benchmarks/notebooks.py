@@ -2,9 +2,10 @@
 
     python benchmarks/notebooks.py [NOTEBOOK ...]     # default: every chapter and exercise
 
-Executes each notebook as the tests do (a fresh kernel, in its own folder), prints
-its wall time, and lists the problems rsgeo.plot.figure_problems finds in its
-figures. The course's goal: every notebook in 30 s or less on a 2-core machine.
+Executes each notebook as the tests do (a fresh kernel, in its own folder, auditing
+its figures as the book's build does: book/_ext/figure_audit.py), prints its wall
+time, and lists the problems the audit finds in its figures. The course's goal:
+every notebook in 30 s or less on a 2-core machine.
 """
 
 import sys

@@ -40,7 +40,7 @@ import pandas as pd  # noqa: E402
 import scipy  # noqa: E402
 import skimage  # noqa: E402
 
-from rsgeo import data, gcp, matching, regions, synthetic, tiepoints  # noqa: E402
+from rsgeo import accuracy, data, matching, regions, synthetic, tiepoints  # noqa: E402
 
 from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 
@@ -66,8 +66,8 @@ def real_cases():
     ccd, hrc = data.load("cbers2b_rgb342"), data.load("cbers2b_hrc")
     blocks, block_transform = tiepoints.coarsen(hrc.array, hrc.transform, 8)
     gcps = data.load_gcps("cbers2b_ccd_hrc")
-    hand, kept = gcp.refine_gcps(gcps.map_xy, gcps.image_xy, 1, 2.5)
-    loo = gcp.leave_one_out_errors(gcps.map_xy[kept], gcps.image_xy[kept], 1)
+    hand, kept = accuracy.refine_gcps(gcps.map_xy, gcps.image_xy, 1, 2.5)
+    loo = accuracy.leave_one_out_errors(gcps.map_xy[kept], gcps.image_xy[kept], 1)
     loo_rms = float(np.sqrt(np.mean(loo**2)))
     common = {"reference": blocks, "reference_transform": block_transform,
               "approximate": ccd.transform, "pixel_m": 20.0, "truth": hand,
@@ -106,7 +106,7 @@ def run(case, method, seed):
     start = time.perf_counter()
     try:
         found = tie_points(case, method, moving, seed)
-        if isinstance(found, matching.Registration):
+        if isinstance(found, tiepoints.Registration):
             model, used = found.model, int(found.kept.sum())
         else:
             result = tiepoints.register(found, tolerance=1.0)

@@ -29,6 +29,7 @@ second, the work such a warp does.
 
 import argparse
 import csv
+import functools
 import os
 import subprocess
 import sys
@@ -39,8 +40,9 @@ from pathlib import Path
 import affine
 import numpy as np
 
-from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 from rsgeo.resample import warp
+
+from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 
 METHODS = ("nearest", "bilinear", "cubic")
 
@@ -85,7 +87,8 @@ def run_opencv(image, to_source, method, threads=1):
     cv2.setNumThreads(threads)
     half = affine.Affine.translation(0.5, 0.5)
     matrix = np.array(~half * to_source * half).reshape(3, 3)[:2]
-    flag = {"nearest": cv2.INTER_NEAREST, "bilinear": cv2.INTER_LINEAR, "cubic": cv2.INTER_CUBIC}[method]
+    flag = {"nearest": cv2.INTER_NEAREST, "bilinear": cv2.INTER_LINEAR,
+            "cubic": cv2.INTER_CUBIC}[method]
     return cv2.warpAffine(image, matrix, image.shape[::-1], flags=flag | cv2.WARP_INVERSE_MAP)
 
 
@@ -109,7 +112,8 @@ def best_time(function, repeat):
 def test_image(size, dtype):
     """A random image covering the dtype's whole range (the same in every run)."""
     info = np.iinfo(dtype)
-    return np.random.default_rng(0).integers(info.min, int(info.max) + 1, (size, size), dtype=dtype)
+    return np.random.default_rng(0).integers(info.min, int(info.max) + 1, (size, size),
+                                             dtype=dtype)
 
 
 DOWNSAMPLED_METHODS = ("bilinear", "cubic", "average")
@@ -137,8 +141,9 @@ def benchmark(sizes=(2048, 4096), dtypes=("uint8", "int16"), repeat=3, peers=Non
                         function(image, to_source, method, threads)       # warm up
                     except ImportError:
                         continue
-                    seconds = best_time(lambda: function(image, to_source, method, threads),
-                                        repeat)
+                    seconds = best_time(
+                        functools.partial(function, image, to_source, method, threads),
+                        repeat)
                     speeds[label] = (threads, size * size / seconds / 1e6)
                 for label, (threads, speed) in speeds.items():
                     reference = speeds.get(REFERENCE[threads])
@@ -161,8 +166,9 @@ def _downsampling_rows(image, peers, repeat, factors):
                 if label not in DOWNSAMPLING_PEERS:
                     continue
                 function(image, coarse, method, threads, shape)                # warm up
-                seconds = best_time(lambda: function(image, coarse, method, threads, shape),
-                                    repeat)
+                seconds = best_time(
+                    functools.partial(function, image, coarse, method, threads, shape),
+                    repeat)
                 speeds[label] = (threads, size * size / seconds / 1e6)
             for label, (threads, speed) in speeds.items():
                 reference = speeds.get(REFERENCE[threads])
@@ -231,7 +237,8 @@ def save_csv(rows, file, command="", extra=None):
     with open(file, "w", newline="") as handle:
         handle.write(header_lines({**machine(), **(extra or {}), "command": command}))
         writer = csv.writer(handle)
-        writer.writerow(["size", "dtype", "method", "peer", "threads", "Mpx_per_s", "ratio_to_GDAL"])
+        writer.writerow(["size", "dtype", "method", "peer", "threads", "Mpx_per_s",
+                         "ratio_to_GDAL"])
         for size, dtype, method, peer, threads, speed, ratio in rows:
             writer.writerow([size, dtype, method, peer, threads, f"{speed:.2f}", f"{ratio:.3f}"])
     return file
@@ -239,7 +246,7 @@ def save_csv(rows, file, command="", extra=None):
 
 def print_table(rows):
     print(f"{'size':>6} {'dtype':>6} {'method':>9} {'peer':>17} {'Mpx/s':>8} {'× GDAL':>7}")
-    for size, dtype, method, peer, threads, speed, ratio in rows:
+    for size, dtype, method, peer, _threads, speed, ratio in rows:
         print(f"{size:>6} {dtype:>6} {method:>9} {peer:>17} {speed:8.1f} {ratio:7.2f}")
 
 

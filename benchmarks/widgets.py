@@ -37,7 +37,8 @@ GOAL_MEDIAN, GOAL_WORST = 0.15, 0.3
 
 
 def controls_of(box):
-    """The value controls inside a widget box, in display order (Play is linked in the browser only)."""
+    """The value controls inside a widget box, in display order (Play is linked in the
+    browser only)."""
     import ipywidgets as widgets
 
     found, stack = [], [box]
@@ -55,7 +56,8 @@ def values_for(control, count=8):
     import ipywidgets as widgets
 
     if isinstance(control, widgets.Dropdown):
-        options = [option[1] if isinstance(option, tuple) else option for option in control.options]
+        options = [option[1] if isinstance(option, tuple) else option
+                   for option in control.options]
         values = [value for value in options if value != control.value]
         return values + [control.value]          # and back
     grid = np.linspace(control.min, control.max, count)
@@ -100,7 +102,8 @@ def time_widget(build, repeat=2):
                 seconds.append(time.perf_counter() - start)
                 cpu.append(time.process_time() - start_cpu)
                 if output.outputs is before or "image/png" not in output.outputs[0]["data"]:
-                    raise RuntimeError(f"{control.description}: no new PNG frame after value {value!r}")
+                    raise RuntimeError(f"{control.description}: no new PNG frame "
+                                       f"after value {value!r}")
         control.value = default
         rows.append((control.description, len(seconds), statistics.median(seconds), max(seconds),
                      statistics.median(cpu), max(cpu), build_s))
@@ -114,8 +117,8 @@ def machine():
 
     from rsgeo.widgets import DPI
 
-    return describe(matplotlib=f"{matplotlib.__version__} (Agg)", ipywidgets=ipywidgets.__version__,
-                    **{"frame dpi": str(DPI)})
+    return describe(matplotlib=f"{matplotlib.__version__} (Agg)",
+                    ipywidgets=ipywidgets.__version__, **{"frame dpi": str(DPI)})
 
 
 def _load():
@@ -132,8 +135,8 @@ def save_csv(rows, file, extra):
         writer.writerow(["widget", "control", "updates", "median_s", "worst_s", "median_cpu_s",
                          "worst_cpu_s", "build_s", "goal_met"])
         for widget, control, count, median, worst, median_cpu, worst_cpu, build_s in rows:
-            writer.writerow([widget, control, count, f"{median:.3f}", f"{worst:.3f}", f"{median_cpu:.3f}",
-                             f"{worst_cpu:.3f}", f"{build_s:.2f}",
+            writer.writerow([widget, control, count, f"{median:.3f}", f"{worst:.3f}",
+                             f"{median_cpu:.3f}", f"{worst_cpu:.3f}", f"{build_s:.2f}",
                              "yes" if median <= GOAL_MEDIAN and worst <= GOAL_WORST else "no"])
     return file
 
@@ -153,10 +156,11 @@ if __name__ == "__main__":
                 build, arguments.repeat):
             rows.append((name, control, count, median, worst, median_cpu, worst_cpu, build_s))
             flag = "" if median <= GOAL_MEDIAN and worst <= GOAL_WORST else "  over the goal"
-            print(f"{name:28s} {control:14s} {count:3d} {median:9.3f} {worst:8.3f} {median_cpu:12.3f} "
-                  f"{worst_cpu:11.3f}{flag}")
+            print(f"{name:28s} {control:14s} {count:3d} {median:9.3f} {worst:8.3f} "
+                  f"{median_cpu:12.3f} {worst_cpu:11.3f}{flag}")
     extra = {"load before": load_before, "load after": _load(),
              "seconds": f"{time.perf_counter() - started:.0f}",
-             "goal": f"median <= {GOAL_MEDIAN} s and worst <= {GOAL_WORST} s per widget and control",
+             "goal": (f"median <= {GOAL_MEDIAN} s and worst <= {GOAL_WORST} s "
+                      "per widget and control"),
              "command": "python benchmarks/widgets.py " + " ".join(sys.argv[1:])}
     print(f"saved {save_csv(rows, arguments.output, extra)}")

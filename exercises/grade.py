@@ -54,6 +54,7 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 sys.path.insert(0, str(ROOT / "book" / "_ext"))
 from make_student_edition import BEGIN, strip_solutions  # noqa: E402
+
 from offline_book import IPCKernelManager  # noqa: E402
 
 COURSE = HERE
@@ -533,7 +534,8 @@ def main(argv=None):
     write_csv(rows, options.out)
     summary = options.html or str(Path(options.out).with_suffix(".html"))
     write_html(rows, summary)
-    counts = {verdict: sum(row.verdict.startswith(verdict) for row in rows) for verdict in VERDICTS}
+    counts = {verdict: sum(row.verdict.startswith(verdict) for row in rows)
+              for verdict in VERDICTS}
     print(f"{len(rows)} verdicts ({', '.join(f'{n} {v}' for v, n in counts.items())}) "
           f"in {options.out} and {summary}")
     return 0

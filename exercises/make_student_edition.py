@@ -26,11 +26,14 @@ import nbformat
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN, END = "### BEGIN SOLUTION", "### END SOLUTION"
-SOURCES = ("_config.yml", "_toc.yml", "references.bib", "book", "exercises", "benchmarks/results")
+# chapter 6 imports its experiment harness, benchmarks/ga_experiments.py, beside the tables
+SOURCES = ("_config.yml", "_toc.yml", "references.bib", "book", "exercises", "benchmarks/results",
+           "benchmarks/ga_experiments.py")
 
 
 def strip_solutions(source):
-    """A code cell's source without its solution blocks; raises ValueError on unbalanced markers."""
+    """A code cell's source without its solution blocks; raises ValueError on unbalanced
+    markers."""
     kept, inside = [], False
     for number, line in enumerate(source.splitlines(), start=1):
         marker = line.strip()
@@ -78,8 +81,10 @@ def make_student_edition(output):
         else:
             shutil.copy2(source, output / name)
     config = (output / "_config.yml").read_text()
-    # chapters run as in the instructors' book; exercises stop at their first task, so students run them
-    config, count = re.subn(r"^execute:\n", "execute:\n  exclude_patterns:\n    - \"exercises/*\"\n",
+    # chapters run as in the instructors' book; exercises stop at their first task, so students
+    # run them
+    config, count = re.subn(r"^execute:\n",
+                            "execute:\n  exclude_patterns:\n    - \"exercises/*\"\n",
                             config, count=1, flags=re.M)
     if count != 1:
         raise ValueError("_config.yml has no `execute:` section to exclude the exercises from")
@@ -91,8 +96,10 @@ def make_student_edition(output):
         config, count = re.subn(r"^(  execute_notebooks: cache.*\n)", rf"\1  cache: {cache}\n",
                                 config, count=1, flags=re.M)
         if count != 1:
-            raise ValueError("_config.yml does not execute into a cache (execute_notebooks: cache)")
-    config = re.sub(r"^title:\s*(.*)$", r"title: \1 (student edition)", config, count=1, flags=re.M)
+            raise ValueError("_config.yml does not execute into a cache "
+                             "(execute_notebooks: cache)")
+    config = re.sub(r"^title:\s*(.*)$", r"title: \1 (student edition)", config, count=1,
+                    flags=re.M)
     # the edition is built alone: no Portuguese book beside it for the language switch to open
     config, count = re.subn(r"^(\s*i18n_other_book:).*$", r'\1 ""', config, count=1, flags=re.M)
     if count != 1:

@@ -86,7 +86,8 @@ def build_singlehtml(build_dir=ROOT):
     redirect = output / "index.html"            # points to the root document, book/intro.html
     found = re.search(r'url=([^"]+)"', redirect.read_text()) if redirect.exists() else None
     if build.returncode != 0 or found is None or not (output / found.group(1)).exists():
-        raise RuntimeError("the single-page build failed:\n" + (build.stdout + build.stderr)[-3000:])
+        raise RuntimeError("the single-page build failed:\n"
+                           + (build.stdout + build.stderr)[-3000:])
     # the page's links (_static/, _images/) are relative to the output folder: print a copy there
     page = output / "rsgeo-course.html"
     shutil.copyfile(output / found.group(1), page)

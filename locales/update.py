@@ -10,9 +10,10 @@ Markdown, rsgeo's messages):
    ``sphinx-intl update -l pt_BR -d locales``: new paragraphs arrive untranslated, changed ones
    fuzzy (with the old translation as a suggestion), removed ones are dropped.
    Docstrings on the API page are not in the templates (book/_ext/i18n_book.py).
-2. rsgeo: the messages wrapped in ``_()`` / ``N_()`` in rsgeo/ and the exercise checks' hint
-   sentences (:func:`rsgeo_messages`) update ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, which
-   is compiled to ``rsgeo.mo`` (shipped, so that rsgeo needs no Babel at run time;
+2. rsgeo: the messages wrapped in ``_()`` / ``N_()`` in rsgeo/ (:func:`rsgeo_messages`; the
+   exercise checks' hints are ``N_()`` in their declarations) update
+   ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, which is compiled to \
+``rsgeo.mo`` (shipped, so that rsgeo needs no Babel at run time;
    tests/test_i18n.py checks that it is current).
 3. ``_config_pt.yml`` is remade from ``_config.yml`` (:func:`portuguese_config`).
 
@@ -87,42 +88,11 @@ def update_book(templates, only_new=False, pages=None):
                     "-l", LANGUAGE, "-d", str(LOCALES)], check=True, cwd=ROOT)
 
 
-#: rsgeo/exercises.py's checks write their hints and whole messages as plain strings, and a
-#: Verdict translates them when it is shown (rsgeo._i18n). Every such string is a message of the
-#: catalogue: a string constant, not a docstring nor a piece of an f-string, that is a sentence
-#: (four words or more, ending with ".", "?" or "!", no surrounding space). Fragments of a
-#: composed message do not qualify, so an English hint added without its translation fails
-#: tests/test_i18n.py.
-VERDICT_SOURCES = ("rsgeo/exercises.py",)
-
-
-def verdict_sentences(path):
-    """``{sentence: line}`` of the hint and message sentences in the Python file ``path``."""
-    import ast
-
-    tree = ast.parse(Path(path).read_text(encoding="utf-8"))
-    skip = set()
-    for node in ast.walk(tree):
-        if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
-            body = node.body
-            if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
-                skip.add(id(body[0].value))                     # a docstring
-        if isinstance(node, ast.JoinedStr):
-            skip.update(id(part) for part in ast.walk(node))    # part of an f-string
-    found = {}
-    for node in ast.walk(tree):
-        if (isinstance(node, ast.Constant) and isinstance(node.value, str) and id(node) not in skip
-                and node.value == node.value.strip() and node.value.endswith((".", "?", "!"))
-                and len(node.value.split()) >= 4 and not node.value.startswith((":", ","))):
-            found.setdefault(node.value, node.lineno)
-    return found
-
-
 def rsgeo_messages():
     """``{message: (file, line)}``: every message rsgeo can show a student in its language.
 
-    The messages wrapped in ``_()`` or ``N_()`` anywhere in rsgeo/, and the hint and message
-    sentences of the exercise checks (:data:`VERDICT_SOURCES`).
+    The messages wrapped in ``_()`` or ``N_()`` anywhere in rsgeo/ (a message is translated
+    before it is filled in, so the marker holds the whole format string).
     """
     from babel.messages.extract import extract_from_dir
 
@@ -130,9 +100,6 @@ def rsgeo_messages():
     for filename, line, message, _, _ in extract_from_dir(
             str(ROOT / "rsgeo"), keywords={"_": None, "N_": None}):
         messages.setdefault(message, (f"rsgeo/{filename}", line))
-    for source in VERDICT_SOURCES:
-        for message, line in verdict_sentences(ROOT / source).items():
-            messages.setdefault(message, (source, line))
     return messages
 
 
@@ -172,7 +139,8 @@ def compile_rsgeo():
 
 PORTUGUESE_CONFIG_HEADER = """\
 # The Portuguese edition (Brazilian Portuguese): the same book as _config.yml, built from the same
-# English sources with the translations in locales/pt_BR/LC_MESSAGES (gettext, see locales/update.py).
+# English sources with the translations in locales/pt_BR/LC_MESSAGES (gettext, see \
+locales/update.py).
 # Build (after the English book, whose notebook executions it reuses):
 #   jupyter-book build . --config _config_pt.yml --path-output _build/pt_BR -W -n --keep-going
 # -> _build/pt_BR/_build/html. Made from _config.yml by `python locales/update.py --config`:

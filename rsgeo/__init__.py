@@ -5,25 +5,29 @@ One module per topic of the course:
 - :mod:`rsgeo.data` - real CBERS scenes shipped with the package;
 - :mod:`rsgeo.synthetic` - data with a known answer;
 - :mod:`rsgeo.distortion` - systematic distortions (chapter 1);
-- :mod:`rsgeo.gcp` - polynomial GCP models, residuals, RMS, and the mapping protocol every
-  model follows (``model(points)``, ``model.residuals(src, dst)``, ``model.inverse()``)
-  (chapters 2-3);
+- :mod:`rsgeo.transforms` - the mapping protocol every model follows (``model(points)``,
+  ``model.residuals(src, dst)``, ``model.inverse()``), one registry of model kinds (linear,
+  Helmert, polynomial 1-3, projective, TPS) and ``fit_transform`` (chapters 2, 3b);
+- :mod:`rsgeo.accuracy` - residuals, RMS, leave-one-out, check points, ``refine_gcps`` for any
+  kind (chapter 3);
+- :mod:`rsgeo.gcp` - GCP sets, their CRS and QGIS ``.points`` files (chapter 2);
 - :mod:`rsgeo.georef` - CRSs and datums (SAD69 -> SIRGAS 2000) through PROJ, and a complete
   georeferencing run, ``georeference`` (chapter 2b);
 - :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4);
 - :mod:`rsgeo.terrain` - relief displacement, RPCs fitted to a sensor, orthorectification with a
   DEM (chapter 4b);
 - :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
-- :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm (chapter 6, the GA paper);
-- :mod:`rsgeo.tiepoints` - automatic tie points by correlation and by features, and the
-  registration pipeline they share with the GA (chapter 6c);
-- :mod:`rsgeo.experiments` - the experiment harness behind chapter 6's saved tables (success rates, certified optima);
-- :mod:`rsgeo.exercises` - checks for the exercises;
+- :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm
+  (chapter 6, the GA paper);
+- :mod:`rsgeo.tiepoints` - local shifts by correlation (``measure_shifts``), automatic tie
+  points by correlation and by features, and the registration pipeline they share with the GA
+  (chapter 6c);
+- :mod:`rsgeo.exercises` - the exercises' checks, declared per exercise notebook;
+- :mod:`rsgeo.errors` - the errors rsgeo raises, every one a ``ValueError``;
 - :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets on top of the maths.
 """
 
 import importlib
-import os
 import pkgutil
 
 __version__ = "0.1.0"
@@ -46,8 +50,3 @@ def __getattr__(name):
 def __dir__():
     return sorted(set(globals()) | set(_MODULES))
 
-
-if os.environ.get("RSGEO_AUDIT_FIGURES"):
-    # set by the book's build (book/_ext/offline_book.py) for its kernels: an unreadable figure
-    # writes to standard error, which fails the build
-    importlib.import_module(f"{__name__}.plot").audit_rendered_figures(to_stderr=True)

@@ -1,86 +1,184 @@
-"""Input checks shared by every rsgeo module.
+"""Input checks shared by every rsgeo module: one family, ``as_...`` returns the value checked.
 
-Each helper raises ``ValueError`` with a message that names the argument, what
-was wrong with it and what is needed, so that a student sees the cause of an
-error at the line they wrote, not a traceback from deep inside NumPy.
+Each helper raises an :class:`rsgeo.errors.RsgeoError` subclass (a ``ValueError``) with a
+message that names the argument, what was wrong with it and what is needed, so that a student
+sees the cause of an error at the line they wrote, not a traceback from deep inside NumPy.
 """
 
 import numpy as np
 
 from ._i18n import _
+from .errors import GCPError, GridError, ImageError, RsgeoError
 
 __all__ = [
-    "as_points", "as_image", "as_shape", "check_range", "check_choice",
+    "as_points", "as_image", "as_bands_first", "as_nodata", "as_shape", "as_scale",
+    "as_resolution", "as_num_threads", "check_range", "check_choice",
 ]
 
 
 def as_points(points, name="points"):
     """Return ``points`` as a float64 array of shape (n, 2), finite.
 
+    Parameters
+    ----------
+    points : array_like
+        (n, 2) coordinates, or a single (x, y) pair.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    ndarray
+        (n, 2) float64.
+
     Raises
     ------
-    ValueError
+    rsgeo.errors.GCPError
         If the array is not (n, 2) or holds NaN or infinite values.
     """
     try:
         array = np.asarray(points, dtype=np.float64)
     except (TypeError, ValueError) as error:
-        raise ValueError(_("{name} must be numbers in an (n, 2) array: {error}").format(
+        raise GCPError(_("{name} must be numbers in an (n, 2) array: {error}").format(
             name=name, error=error)) from None
     if array.ndim == 1 and array.shape == (2,):
         array = array[np.newaxis, :]
     if array.ndim != 2 or array.shape[1] != 2:
-        raise ValueError(_("{name} must be an (n, 2) array of (x, y) pairs, got shape {shape}")
-                         .format(name=name, shape=array.shape))
+        raise GCPError(_("{name} must be an (n, 2) array of (x, y) pairs, got shape {shape}")
+                       .format(name=name, shape=array.shape))
     bad = ~np.isfinite(array).all(axis=1)
     if bad.any():
         rows = np.flatnonzero(bad)[:5].tolist()
-        raise ValueError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
-                           "coordinate must be a finite number").format(name=name, rows=rows))
+        raise GCPError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
+                         "coordinate must be a finite number").format(name=name, rows=rows))
     return array
 
 
 def as_image(image, name="image"):
-    """Return ``image`` as an array with 2 (rows, cols) or 3 (bands, rows, cols) dimensions."""
+    """Return ``image`` as an array with 2 (rows, cols) or 3 (bands, rows, cols) dimensions.
+
+    Parameters
+    ----------
+    image : array_like
+        Integers or floats, at least one pixel.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    ndarray
+        ``image`` as an array (not copied when it is one).
+
+    Raises
+    ------
+    rsgeo.errors.ImageError
+        If the array is not 2-D or 3-D, holds neither integers nor floats, or is empty.
+    """
     array = np.asarray(image)
     if array.ndim not in (2, 3):
-        raise ValueError(_("{name} must be 2-D (rows, cols) or 3-D (bands, rows, cols), got "
+        raise ImageError(_("{name} must be 2-D (rows, cols) or 3-D (bands, rows, cols), got "
                            "{ndim}-D with shape {shape}").format(name=name, ndim=array.ndim,
                                                                  shape=array.shape))
     if array.dtype.kind not in "uif":
-        raise ValueError(_("{name} must hold integers or floats, got dtype {dtype}").format(
+        raise ImageError(_("{name} must hold integers or floats, got dtype {dtype}").format(
             name=name, dtype=array.dtype))
     if min(array.shape[-2:]) < 1:
-        raise ValueError(_("{name} is empty (shape {shape}); it needs at least one pixel").format(
+        raise ImageError(_("{name} is empty (shape {shape}); it needs at least one pixel").format(
             name=name, shape=array.shape))
     return array
 
 
-def check_range(value, name, low=None, high=None, why=""):
-    """Return ``value`` as a float, checked to be finite and within [low, high]."""
-    number = float(value)
-    if not np.isfinite(number):
-        raise ValueError(_("{name} must be a finite number, got {value!r}").format(
-            name=name, value=value))
-    if (low is not None and number < low) or (high is not None and number > high):
-        bounds = f"[{low}, {high}]" if low is not None and high is not None else (
-            f">= {low}" if low is not None else f"<= {high}")
-        reason = f" ({why})" if why else ""
-        raise ValueError(_("{name} must be {bounds}{reason}, got {value!r}").format(
-            name=name, bounds=bounds, reason=reason, value=value))
-    return number
+def as_bands_first(image, name="image"):
+    """Return ``image`` unchanged unless a 3-D image looks bands-last (rows, cols, 3 or 4).
+
+    rsgeo, like rasterio and GDAL, stores several bands first: (bands, rows,
+    cols). An RGB array from matplotlib, Pillow or OpenCV is (rows, cols, 3);
+    read bands first, it would be 351 "bands" of 369 x 3 pixels, and a warp or
+    a GeoTIFF made from it is silently wrong.
+
+    Parameters
+    ----------
+    image : ndarray
+        The image to check.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    ndarray
+        ``image`` unchanged.
+
+    Raises
+    ------
+    rsgeo.errors.ImageError
+        If ``image`` is 3-D, its last axis has 3 or 4 entries and its first
+        two axes are both more than four times longer.
+
+    Examples
+    --------
+    >>> as_bands_first(np.zeros((3, 40, 50))).shape
+    (3, 40, 50)
+    >>> as_bands_first(np.zeros((40, 50, 3)))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.ImageError: image has shape (40, 50, 3), which looks like bands last ...
+    """
+    shape = np.shape(image)
+    if len(shape) == 3 and shape[2] in (3, 4) and min(shape[0], shape[1]) > 4 * shape[2]:
+        raise ImageError(f"{name} has shape {tuple(shape)}, which looks like bands last "
+                         "(rows, cols, bands); rsgeo needs bands first (bands, rows, cols): "
+                         f"pass np.moveaxis({name}, -1, 0)")
+    return image
 
 
-def check_choice(value, name, choices):
-    """Return ``value`` if it is one of ``choices``, else raise naming the options."""
-    if value not in choices:
-        raise ValueError(_("unknown {name} {value!r}; choose one of {choices}").format(
-            name=name, value=value, choices=", ".join(map(repr, choices))))
-    return value
+def as_nodata(nodata, dtype):
+    """Return ``nodata`` if it is representable in ``dtype``, else raise.
+
+    Parameters
+    ----------
+    nodata : int, float or None
+        The value for positions outside the image; None for none.
+    dtype : numpy dtype or str
+        The image's dtype.
+
+    Returns
+    -------
+    int, float or None
+        ``nodata`` as an int for an integer dtype, unchanged otherwise.
+
+    Raises
+    ------
+    rsgeo.errors.ImageError
+        If ``dtype`` is an integer type and ``nodata`` is not a finite whole
+        number inside its range, or ``dtype`` is float32 and ``nodata`` is
+        finite but beyond float32's largest value.
+
+    Examples
+    --------
+    >>> as_nodata(255.0, np.uint8)
+    255
+    >>> as_nodata(-1, np.uint8)
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.ImageError: nodata=-1 does not fit dtype uint8 (needs an integer in [0, 255])
+    """
+    if nodata is None:
+        return None
+    dtype = np.dtype(dtype)
+    if dtype.kind in "ui":
+        info = np.iinfo(dtype)
+        if not (np.isfinite(nodata) and float(nodata).is_integer()
+                and info.min <= nodata <= info.max):
+            raise ImageError(f"nodata={nodata!r} does not fit dtype {dtype} "
+                             f"(needs an integer in [{info.min}, {info.max}])")
+        return int(nodata)
+    if dtype == np.float32 and np.isfinite(nodata) and abs(nodata) > np.finfo(np.float32).max:
+        raise ImageError(f"nodata={nodata!r} does not fit dtype float32")
+    return nodata
 
 
 def as_shape(shape, name="shape"):
-    """Return ``shape`` as a (rows, cols) tuple of positive ints, else raise ValueError.
+    """Return ``shape`` as a (rows, cols) tuple of positive ints, else raise.
 
     Parameters
     ----------
@@ -92,10 +190,11 @@ def as_shape(shape, name="shape"):
     Returns
     -------
     (int, int)
+        Rows and columns.
 
     Raises
     ------
-    ValueError
+    rsgeo.errors.GridError
         If ``shape`` is a single number, has other than two entries, or holds
         anything but positive whole numbers.
 
@@ -106,20 +205,202 @@ def as_shape(shape, name="shape"):
     >>> as_shape(351)
     Traceback (most recent call last):
     ...
-    ValueError: shape must be (rows, cols), two positive integers, got 351
+    rsgeo.errors.GridError: shape must be (rows, cols), two positive integers, got 351
     """
     message = _("{name} must be (rows, cols), two positive integers, got {shape!r}").format(
         name=name, shape=shape)
     try:
         values = tuple(shape)
     except TypeError:
-        raise ValueError(message) from None
+        raise GridError(message) from None
     if len(values) != 2:
-        raise ValueError(message)
+        raise GridError(message)
     try:
         ok = all(float(n).is_integer() and n >= 1 for n in values)
     except (TypeError, ValueError):
         ok = False
     if not ok:
-        raise ValueError(message)
+        raise GridError(message)
     return int(values[0]), int(values[1])
+
+
+def _positive_pair(value, name, meaning):
+    """``value`` (one number for both, or two) as two finite floats above 0, else GridError
+    naming ``name`` and saying what it means."""
+    message = (f"{name} must be one or two finite numbers above 0 ({meaning}), "
+               f"got {value!r}")
+    try:
+        values = np.asarray(value, dtype=np.float64).ravel()
+    except (TypeError, ValueError):
+        raise GridError(message) from None
+    if values.size == 1:
+        values = np.repeat(values, 2)
+    if values.size != 2 or not (np.isfinite(values).all() and (values > 0).all()):
+        raise GridError(message)
+    return float(values[0]), float(values[1])
+
+
+def as_scale(scale):
+    """Return a kernel scale as two positive floats (xscale, yscale), else raise.
+
+    Parameters
+    ----------
+    scale : float or (float, float)
+        GDAL's XSCALE and YSCALE: output pixels per source pixel along the
+        rows and the columns (below 1 when downsampling). One number is used
+        for both.
+
+    Returns
+    -------
+    (float, float)
+        xscale and yscale.
+
+    Raises
+    ------
+    rsgeo.errors.GridError
+        If ``scale`` is not one or two finite numbers above zero.
+
+    Examples
+    --------
+    >>> as_scale(0.125)
+    (0.125, 0.125)
+    >>> as_scale((0.5, 0))
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.GridError: scale must be one or two finite numbers above 0 (output pixels per source pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), got (0.5, 0)
+    """  # noqa: E501  (a doctest's expected line)
+    return _positive_pair(scale, "scale", "output pixels per source pixel, xscale and yscale, "
+                          "e.g. 0.125 for 2.5 m taken to 20 m")
+
+
+def as_resolution(resolution):
+    """Return a pixel size as two positive floats (xres, yres), else raise.
+
+    Parameters
+    ----------
+    resolution : float or (float, float)
+        Output pixel size in map units (gdalwarp's ``-tr``); one number for both.
+
+    Returns
+    -------
+    (float, float)
+        xres and yres.
+
+    Raises
+    ------
+    rsgeo.errors.GridError
+        If ``resolution`` is not one or two finite numbers above 0.
+
+    Examples
+    --------
+    >>> as_resolution(20)
+    (20.0, 20.0)
+    """
+    return _positive_pair(resolution, "resolution", "the output pixel size in map units, xres "
+                          "and yres, e.g. 20 for 20 m pixels")
+
+
+def as_num_threads(num_threads):
+    """Return ``num_threads`` as an int from 1 to Numba's thread count, else raise.
+
+    Parameters
+    ----------
+    num_threads : int
+        Threads to share a kernel's rows; a whole-valued float is accepted.
+
+    Returns
+    -------
+    int
+        ``num_threads`` as an int.
+
+    Raises
+    ------
+    rsgeo.errors.RsgeoError
+        If ``num_threads`` is not a whole number from 1 to
+        ``numba.config.NUMBA_NUM_THREADS``.
+
+    Examples
+    --------
+    >>> as_num_threads(1)
+    1
+    >>> as_num_threads(0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.RsgeoError: num_threads must be a whole number from 1 to ...
+    """
+    import numba  # only the kernels' callers need it: importing Numba takes a second
+
+    most = numba.config.NUMBA_NUM_THREADS
+    try:
+        ok = float(num_threads).is_integer() and 1 <= num_threads <= most
+    except (TypeError, ValueError):
+        ok = False
+    if not ok:
+        raise RsgeoError(f"num_threads must be a whole number from 1 to {most} (the threads "
+                         f"Numba may use here, NUMBA_NUM_THREADS), got {num_threads!r}")
+    return int(num_threads)
+
+
+def check_range(value, name, low=None, high=None, why=""):
+    """Return ``value`` as a float, checked to be finite and within [low, high].
+
+    Parameters
+    ----------
+    value : float
+        The number to check.
+    name : str
+        Its name in the error message.
+    low, high : float, optional
+        The bounds, inclusive; None for none.
+    why : str
+        Said in parentheses after the bounds.
+
+    Returns
+    -------
+    float
+        ``value`` as a float.
+
+    Raises
+    ------
+    rsgeo.errors.RsgeoError
+        If ``value`` is not finite or lies outside the bounds.
+    """
+    number = float(value)
+    if not np.isfinite(number):
+        raise RsgeoError(_("{name} must be a finite number, got {value!r}").format(
+            name=name, value=value))
+    if (low is not None and number < low) or (high is not None and number > high):
+        bounds = f"[{low}, {high}]" if low is not None and high is not None else (
+            f">= {low}" if low is not None else f"<= {high}")
+        reason = f" ({why})" if why else ""
+        raise RsgeoError(_("{name} must be {bounds}{reason}, got {value!r}").format(
+            name=name, bounds=bounds, reason=reason, value=value))
+    return number
+
+
+def check_choice(value, name, choices):
+    """Return ``value`` if it is one of ``choices``, else raise naming the options.
+
+    Parameters
+    ----------
+    value : object
+        The choice made.
+    name : str
+        What is chosen, in the error message.
+    choices : sequence
+        The options.
+
+    Returns
+    -------
+    object
+        ``value``.
+
+    Raises
+    ------
+    rsgeo.errors.RsgeoError
+        If ``value`` is not one of ``choices``.
+    """
+    if value not in choices:
+        raise RsgeoError(_("unknown {name} {value!r}; choose one of {choices}").format(
+            name=name, value=value, choices=", ".join(map(repr, choices))))
+    return value

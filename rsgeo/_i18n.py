@@ -2,8 +2,9 @@
 
 Messages a student reads (exercise verdicts, the checks' messages and hints, the most common
 ``ValueError`` messages of :mod:`rsgeo._checks`, the labels of the figures :mod:`rsgeo.plot`
-draws) are written in English in the code and wrapped in :func:`_` (a check's hint sentences are
-translated when :class:`rsgeo.exercises.Verdict` shows them); their Portuguese lives in the gettext
+draws) are written in English in the code and wrapped in :func:`_` (a check's hints are marked
+with :func:`N_` in its declaration and translated when the check gives them, before their fields
+are filled, like every message of :mod:`rsgeo.exercises`); their Portuguese lives in the gettext
 catalogue ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, shipped compiled (``rsgeo.mo``, made by
 ``locales/update.py``, which collects the messages; a test checks that both are current).
 
@@ -22,6 +23,8 @@ import gettext as _gettext
 import os
 from pathlib import Path
 
+from .errors import RsgeoError
+
 __all__ = ["LANGUAGES", "ENVIRONMENT_VARIABLE", "LOCALE_DIR", "VERDICT_LABELS", "get_language",
            "set_language", "translate", "_", "N_"]
 
@@ -39,15 +42,15 @@ _chosen = None
 def _normalise(language, source):
     """``language`` as one of :data:`LANGUAGES` ("pt-BR", "pt", "pt_BR.UTF-8" -> "pt_BR")."""
     if not isinstance(language, str):
-        raise ValueError(f"{source} must be a language name such as 'pt_BR', "
-                         f"got {type(language).__name__} {language!r}")
+        raise TypeError(f"{source} must be a language name such as 'pt_BR', "
+                        f"got {type(language).__name__} {language!r}")
     name = language.split(".")[0].split("@")[0].replace("-", "_").strip()
     lowered = name.lower()
     if lowered in ("", "c", "posix") or lowered.startswith("en"):
         return "en"
     if lowered in ("pt", "pt_br"):
         return "pt_BR"
-    raise ValueError(f"{source} is {language!r}, a language rsgeo does not speak: "
+    raise RsgeoError(f"{source} is {language!r}, a language rsgeo does not speak: "
                      f"use one of {', '.join(LANGUAGES)}")
 
 
@@ -111,7 +114,7 @@ def get_language():
     return _normalise(os.environ.get(ENVIRONMENT_VARIABLE, "en"), ENVIRONMENT_VARIABLE)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _catalogue(language):
     if language == "en":
         return _gettext.NullTranslations()

@@ -13,8 +13,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ._checks import as_points, as_shape, check_range
-from .gcp import GeometricModel, InverseModel
+from .errors import GridError, ModelError, RsgeoError
 from .resample import grid_positions, interpolate
+from .transforms import GeometricModel, InverseModel
 
 __all__ = [
     "EARTH_RADIUS_KM", "EQUATORIAL_RADIUS_KM", "EARTH_ROTATION_RAD_S", "GM_KM3_S2",
@@ -53,7 +54,8 @@ def orbital_rate(altitude_km):
     ----------
     Kepler's third law for a circular orbit, GM = 398600.4418 km³/s².
     """
-    altitude_km = check_range(altitude_km, "altitude_km", low=1e-9, why="the satellite flies above the ground")
+    altitude_km = check_range(altitude_km, "altitude_km", low=1e-9,
+                              why="the satellite flies above the ground")
     return float(np.sqrt(GM_KM3_S2 / (EARTH_RADIUS_KM + altitude_km) ** 3))
 
 
@@ -108,7 +110,7 @@ def track_angle(latitude_deg, inclination_deg=98.2):
     sine = abs(np.cos(inclination)) / np.cos(latitude) if np.cos(latitude) > 0 else np.inf
     if sine > 1:
         reach = 90 - abs(90 - np.degrees(inclination))
-        raise ValueError(f"an orbit inclined {inclination_deg}° never passes over latitude "
+        raise RsgeoError(f"an orbit inclined {inclination_deg}° never passes over latitude "
                          f"{latitude_deg}° (it reaches ±{reach:.1f}°)")
     return float(np.degrees(np.arcsin(sine)))
 
@@ -118,12 +120,14 @@ PASS_DIRECTIONS = ("descending", "ascending")
 
 def _check_pass(pass_direction):
     if pass_direction not in PASS_DIRECTIONS:
-        raise ValueError(f"pass_direction must be 'descending' (north to south, the daytime pass of "
-                         f"Landsat and CBERS) or 'ascending' (south to north), got {pass_direction!r}")
+        raise RsgeoError(f"pass_direction must be 'descending' (north to south, the daytime pass "
+                         f"of Landsat and CBERS) or 'ascending' (south to north), got "
+                         f"{pass_direction!r}")
     return pass_direction
 
 
-def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, inclination_deg=98.2,
+def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0,
+                        inclination_deg=98.2,
                         pass_direction="descending"):
     """Size (km) of the across-track offset between a frame's last line and its first.
 
@@ -192,9 +196,10 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0, 
     return float(surface_speed * imaging_time * np.cos(zeta))
 
 
-def earth_rotation_offset(latitude_deg, frame_length_km=185.0, altitude_km=705.0, inclination_deg=98.2,
+def earth_rotation_offset(latitude_deg, frame_length_km=185.0, altitude_km=705.0,
+                          inclination_deg=98.2,
                           pass_direction="descending"):
-    """Where the ground under a frame's last line lies relative to the first line's: (east, north) km.
+    """Where the ground under a frame's last line lies from the first line's: (east, north) km.
 
     The offset is across the ground track, of size :func:`earth_rotation_skew`,
     on the track's west side. A retrograde sun-synchronous orbit (inclination
@@ -273,7 +278,8 @@ def frame_outline(latitude_deg, frame_length_km, width_km, altitude_km=705.0, in
     185.0
     """
     check_range(width_km, "width_km", low=0, why="a width")
-    offset = np.array(earth_rotation_offset(latitude_deg, frame_length_km, altitude_km, inclination_deg,
+    offset = np.array(earth_rotation_offset(latitude_deg, frame_length_km, altitude_km,
+                                            inclination_deg,
                                             pass_direction))
     zeta = np.radians(track_angle(latitude_deg, inclination_deg))
     retrograde = np.cos(np.radians(inclination_deg)) < 0      # heads west of the meridian
@@ -323,9 +329,10 @@ def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclina
     0.0681
     """
     if int(lines) != lines or lines < 1:
-        raise ValueError(f"lines must be a positive whole number, got {lines!r}")
+        raise RsgeoError(f"lines must be a positive whole number, got {lines!r}")
     check_range(pixel_size_km, "pixel_size_km", low=1e-12, why="a size")
-    offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km, inclination_deg,
+    offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km,
+                                    inclination_deg,
                                     pass_direction)
     return offset_km / pixel_size_km / lines
 
@@ -363,11 +370,11 @@ def _check_scan(scan_angle_deg, altitude_km):
     theta = np.radians(np.asarray(scan_angle_deg, dtype=np.float64))
     check_range(altitude_km, "altitude_km", low=1e-9, why="the satellite flies above the ground")
     if not np.isfinite(theta).all():
-        raise ValueError("scan_angle_deg must be finite")
+        raise RsgeoError("scan_angle_deg must be finite")
     horizon = np.arcsin(EARTH_RADIUS_KM / (EARTH_RADIUS_KM + altitude_km))
     if np.any(np.abs(theta) >= horizon):
-        raise ValueError(f"scan angle {np.degrees(np.max(np.abs(theta))):.2f}° is beyond the horizon, "
-                         f"which is at {np.degrees(horizon):.2f}° from {altitude_km} km")
+        raise ModelError(f"scan angle {np.degrees(np.max(np.abs(theta))):.2f}° is beyond the "
+                         f"horizon, which is at {np.degrees(horizon):.2f}° from {altitude_km} km")
     return theta
 
 
@@ -607,11 +614,11 @@ def _look_vector(theta, psi=0.0, epsilon=0.0):
 
 
 def _ground_point(altitude_km, theta, psi=0.0, epsilon=0.0, curved_earth=True):
-    """3-D ground point (km) a look ray hits: Earth's centre at the origin, or flat ground at z = 0."""
+    """3-D ground point (km) a look ray hits: centre of the Earth at the origin, or flat z = 0."""
     ux, uy, uz = _look_vector(theta, psi, epsilon)
     if not curved_earth:
         if np.any(uz >= 0):
-            raise ValueError("the look direction does not reach a flat ground "
+            raise ModelError("the look direction does not reach a flat ground "
                              "(it points at or above the horizon)")
         t = altitude_km / -uz
         return t * ux, t * uy, np.zeros_like(t)
@@ -619,7 +626,7 @@ def _ground_point(altitude_km, theta, psi=0.0, epsilon=0.0, curved_earth=True):
     b = height * -uz
     disc = b ** 2 - (height ** 2 - EARTH_RADIUS_KM ** 2)
     if np.any(disc < 0) or np.any(b <= 0):
-        raise ValueError("the look direction misses the Earth: scan plus roll angle is beyond the "
+        raise ModelError("the look direction misses the Earth: scan plus roll angle is beyond the "
                          f"horizon ({np.degrees(np.arcsin(EARTH_RADIUS_KM / height)):.2f}° from "
                          f"{altitude_km} km)")
     t = b - np.sqrt(disc)
@@ -635,13 +642,14 @@ def _surface_distance(p, q, curved_earth=True):
 
 
 def _orbit_coordinates(point):
-    """(across, along) km of a ground point in the orbit-aligned grid: R·asin(x/R), R·atan2(y, z)."""
+    """(across, along) km of a ground point in the orbit grid: R·asin(x/R), R·atan2(y, z)."""
     x, y, z = point
     return EARTH_RADIUS_KM * np.arcsin(x / EARTH_RADIUS_KM), EARTH_RADIUS_KM * np.arctan2(y, z)
 
 
-def attitude_displacement(angle_deg, altitude_km, curved_earth=True, scan_angle_deg=0.0, axis="roll"):
-    """Ground displacement (km) of the point seen at a scan angle when the platform rolls or pitches.
+def attitude_displacement(angle_deg, altitude_km, curved_earth=True, scan_angle_deg=0.0,
+                          axis="roll"):
+    """Ground shift (km) of the point seen at a scan angle when the platform rolls or pitches.
 
     A **roll** turns the platform about the along-track axis, the axis the scan
     mirror turns about: it adds ``angle_deg`` to every scan angle, so the
@@ -685,7 +693,7 @@ def attitude_displacement(angle_deg, altitude_km, curved_earth=True, scan_angle_
     3.75
     """
     if axis not in ("roll", "pitch"):
-        raise ValueError(f"axis must be 'roll' or 'pitch', got {axis!r}")
+        raise RsgeoError(f"axis must be 'roll' or 'pitch', got {axis!r}")
     angle = np.asarray(angle_deg, dtype=np.float64)
     scan = np.asarray(scan_angle_deg, dtype=np.float64)
     if axis == "roll":
@@ -698,8 +706,9 @@ def attitude_displacement(angle_deg, altitude_km, curved_earth=True, scan_angle_
     return np.sign(angle) * _surface_distance(before, after, curved_earth)
 
 
-def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0, curved_earth=True):
-    """Along-track length (km) of the ground one scan of a whiskbroom scanner covers at a scan angle.
+def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0,
+                   curved_earth=True):
+    """Along-track length (km) of the ground one whiskbroom scan covers at a scan angle.
 
     MODIS records ``detectors`` lines per turn of its scan mirror (10 for the
     1 km bands); the detectors sit side by side along track, each seeing
@@ -732,7 +741,7 @@ def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0
     (10.0, 20.1)
     """
     if int(detectors) != detectors or detectors < 1:
-        raise ValueError(f"detectors must be a positive whole number, got {detectors!r}")
+        raise RsgeoError(f"detectors must be a positive whole number, got {detectors!r}")
     check_range(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
     theta = _check_scan(scan_angle_deg, altitude_km)
     half = detectors * nadir_pixel_km / altitude_km / 2
@@ -741,7 +750,8 @@ def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0
     return _surface_distance(first, last, curved_earth)
 
 
-def bowtie_overlap(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0, curved_earth=True):
+def bowtie_overlap(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0,
+                   curved_earth=True):
     """Fraction of a scan's footprint that the next scan covers again: the MODIS bow-tie effect.
 
     The platform advances one nadir footprint (``detectors × nadir_pixel_km``)
@@ -769,7 +779,8 @@ def bowtie_overlap(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0
     >>> round(float(bowtie_overlap(55.0, 705.0)), 2)       # MODIS swath edge: about half
     0.5
     """
-    footprint = scan_footprint(scan_angle_deg, altitude_km, detectors, nadir_pixel_km, curved_earth)
+    footprint = scan_footprint(scan_angle_deg, altitude_km, detectors, nadir_pixel_km,
+                               curved_earth)
     advance = scan_footprint(0.0, altitude_km, detectors, nadir_pixel_km, curved_earth)
     return np.maximum(0.0, 1.0 - advance / footprint)
 
@@ -821,8 +832,9 @@ def scan_edges(scan_index, scan_angle_deg, altitude_km, detectors=10, nadir_pixe
 # The forward simulator and its exact correction
 
 
+# its Parameters are the dataclass's fields, which numpydoc's AST reading does not see
 @dataclass
-class SystematicDistortion(GeometricModel):
+class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
     """A combination of systematic distortions, as a mapping between pixel grids.
 
     Rows are along track (line by line in time), columns across track; the
@@ -900,9 +912,10 @@ class SystematicDistortion(GeometricModel):
         if self.shape is not None:
             self.shape = as_shape(self.shape)
         if (self.view_altitude_km is None) != (self.nadir_pixel_km is None):
-            raise ValueError("view_altitude_km and nadir_pixel_km go together: give both or neither")
+            raise RsgeoError("view_altitude_km and nadir_pixel_km go together: "
+                             "give both or neither")
         if self.view_altitude_km is None and (self.roll_deg or self.pitch_deg):
-            raise ValueError("roll_deg and pitch_deg need view_altitude_km and nadir_pixel_km (an "
+            raise RsgeoError("roll_deg and pitch_deg need view_altitude_km and nadir_pixel_km (an "
                              "angle moves the ground by an amount that depends on the altitude); "
                              "without them give roll_px and pitch_px")
 
@@ -919,13 +932,13 @@ class SystematicDistortion(GeometricModel):
             Radians.
         """
         if self.view_altitude_km is None:
-            raise ValueError("attitude in radians needs view_altitude_km and nadir_pixel_km")
+            raise RsgeoError("attitude in radians needs view_altitude_km and nadir_pixel_km")
         return (np.radians(self.roll_deg) + self.roll_px * self._ifov,
                 np.radians(self.pitch_deg) + self.pitch_px * self._ifov)
 
     def with_knowledge_errors(self, roll_deg=0.0, pitch_deg=0.0, yaw_deg=0.0, across_km=0.0,
                               along_km=0.0, radial_km=0.0):
-        """The model a ground station would use: this one, with its platform data off by these errors.
+        """The model a ground station would use: this one, its platform data off by these errors.
 
         Attitude errors add to the angles; ephemeris (position) errors across
         and along track act, near nadir, as a roll or pitch of position / h
@@ -956,10 +969,11 @@ class SystematicDistortion(GeometricModel):
         0.01
         """
         if self.view_altitude_km is None:
-            raise ValueError("knowledge errors need view_altitude_km and nadir_pixel_km: the "
+            raise RsgeoError("knowledge errors need view_altitude_km and nadir_pixel_km: the "
                              "altitude turns angles and positions into pixels")
         height = self.view_altitude_km
-        return replace(self, roll_deg=float(self.roll_deg + roll_deg + np.degrees(across_km / height)),
+        return replace(self,
+                       roll_deg=float(self.roll_deg + roll_deg + np.degrees(across_km / height)),
                        pitch_deg=float(self.pitch_deg + pitch_deg + np.degrees(along_km / height)),
                        yaw_deg=float(self.yaw_deg + yaw_deg),
                        scale=float(self.scale * (height + radial_km) / height))
@@ -988,8 +1002,8 @@ class SystematicDistortion(GeometricModel):
 
     def _grid(self):
         if self.shape is None:
-            raise ValueError("a SystematicDistortion maps points on a grid whose centre is nadir: "
-                             "give shape=(rows, cols), or use distortion.on_grid(shape)")
+            raise GridError("a SystematicDistortion maps points on a grid whose centre is nadir: "
+                            "give shape=(rows, cols), or use distortion.on_grid(shape)")
         return self.shape
 
     def __call__(self, points):
@@ -1087,7 +1101,7 @@ class SystematicDistortion(GeometricModel):
         c_rot, r_rot = c, r
         r_true = np.array(r_rot, dtype=float, copy=True)
         rate = np.radians(self.yaw_rate_deg_per_line)
-        for _ in range(60):
+        for _iteration in range(60):
             angle = self._yaw(r_true)
             g = r_true - (c_rot * np.sin(angle) + r_rot * np.cos(angle))
             slope = 1 - rate * (c_rot * np.cos(angle) - r_rot * np.sin(angle))
@@ -1106,7 +1120,7 @@ class SystematicDistortion(GeometricModel):
             if strict:
                 index = np.flatnonzero(np.ravel(wrong))[0]
                 first = [float(np.ravel(image_c)[index]), float(np.ravel(image_r)[index])]
-                raise ValueError(
+                raise ModelError(
                     f"{int(wrong.sum())} of {wrong.size} recorded points (first: {first}) have "
                     "no single true position: the inverse did not converge, or several true "
                     f"positions map there. A yaw rate of {self.yaw_rate_deg_per_line}°/line "
@@ -1146,10 +1160,11 @@ def _yaw_roots(c_rot, r_rot, yaw, rate):
 def _on_image_grid(distortion, shape):
     """``distortion`` on the image's grid; refuse a distortion set for another grid."""
     if not isinstance(distortion, SystematicDistortion):
-        raise ValueError(f"distortion must be a SystematicDistortion, got {type(distortion).__name__}")
+        raise TypeError(f"distortion must be a SystematicDistortion, got "
+                        f"{type(distortion).__name__}")
     if distortion.shape is not None and tuple(distortion.shape) != tuple(shape):
-        raise ValueError(f"the distortion is set on a {distortion.shape} grid but the image is "
-                         f"{tuple(shape)}; use distortion.on_grid(image.shape[-2:])")
+        raise GridError(f"the distortion is set on a {distortion.shape} grid but the image is "
+                        f"{tuple(shape)}; use distortion.on_grid(image.shape[-2:])")
     return distortion.on_grid(shape)
 
 

@@ -20,9 +20,10 @@ import re
 
 import numpy as np
 
+from . import transforms as _transforms
 from ._checks import as_points, check_choice
 from .data import Raster
-from . import gcp as _gcp
+from .errors import CRSError, DataError, GCPError
 from .gcp import GCPSet
 from .resample import suggested_grid, warp
 
@@ -63,15 +64,16 @@ def as_crs(crs, name="crs"):
     from rasterio.errors import CRSError
 
     if crs is None:
-        raise ValueError(f"{name} is None; a CRS is needed, e.g. 'EPSG:31983' "
-                         "(SIRGAS 2000 / UTM zone 23S)")
+        raise CRSError(f"{name} is None; a CRS is needed, e.g. 'EPSG:31983' "
+                       "(SIRGAS 2000 / UTM zone 23S)")
     if isinstance(crs, CRS):
         return crs
     try:
-        value = CRS.from_epsg(crs) if isinstance(crs, (int, np.integer)) else CRS.from_user_input(crs)
+        value = (CRS.from_epsg(crs) if isinstance(crs, (int, np.integer))
+                 else CRS.from_user_input(crs))
     except (CRSError, TypeError, ValueError) as error:
-        raise ValueError(f"{name} {crs!r} is not a CRS that PROJ knows ({error}); give an EPSG "
-                         "code such as 'EPSG:31983', a WKT or a PROJ string") from None
+        raise CRSError(f"{name} {crs!r} is not a CRS that PROJ knows ({error}); give an EPSG "
+                       "code such as 'EPSG:31983', a WKT or a PROJ string") from None
     return value
 
 
@@ -113,8 +115,8 @@ def transform_points(points, src_crs, dst_crs):
     xs, ys = transform(src, dst, points[:, 0], points[:, 1])
     result = np.column_stack([xs, ys]).astype(np.float64)
     if not np.isfinite(result).all():
-        raise ValueError(f"PROJ could not transform some points from {src} to {dst} "
-                         "(outside the CRS's area of use?)")
+        raise CRSError(f"PROJ could not transform some points from {src} to {dst} "
+                       "(outside the CRS's area of use?)")
     return result
 
 
@@ -165,7 +167,7 @@ def _geographic(crs):
     geogcs = wkt[start:end + 1]
     spheroid = re.search(r'SPHEROID\["[^"]*",([-+.\deE]+),([-+.\deE]+)', geogcs)
     if start < 0 or spheroid is None:
-        raise ValueError(f"cannot find the datum's ellipsoid in {crs}")
+        raise CRSError(f"cannot find the datum's ellipsoid in {crs}")
     inverse_flattening = float(spheroid.group(2))
     return (CRS.from_wkt(geogcs), float(spheroid.group(1)),
             1 / inverse_flattening if inverse_flattening else 0.0)
@@ -185,7 +187,7 @@ def _to_geographic(x, y, z, a, f):
     e2 = f * (2 - f)
     p = np.hypot(x, y)
     lat = np.arctan2(z, p * (1 - e2))
-    for _ in range(10):
+    for _iteration in range(10):
         n = a / np.sqrt(1 - e2 * np.sin(lat) ** 2)
         height = p / np.cos(lat) - n
         lat = np.arctan2(z, p * (1 - e2 * n / (n + height)))
@@ -229,8 +231,8 @@ def geocentric_translation(points, src_crs, dst_crs, translation=SAD69_TO_SIRGAS
     """
     shift = np.asarray(translation, dtype=np.float64)
     if shift.shape != (3,) or not np.isfinite(shift).all():
-        raise ValueError(f"translation must be three finite numbers (tx, ty, tz) in metres, "
-                         f"got {translation!r}")
+        raise CRSError(f"translation must be three finite numbers (tx, ty, tz) in metres, "
+                       f"got {translation!r}")
     src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
     (src_geo, *src_ellipsoid), (dst_geo, *dst_ellipsoid) = _geographic(src), _geographic(dst)
     lonlat = transform_points(points, src, src_geo)
@@ -271,8 +273,8 @@ def _as_raster(raster_or_path):
             return Raster(array[0] if dataset.count == 1 else array, dataset.transform,
                           dataset.crs, dataset.nodata, "", str(raster_or_path))
     except rasterio.errors.RasterioIOError as error:
-        raise ValueError(f"cannot read {raster_or_path!r} as a raster ({error}); give an "
-                         "rsgeo.data.Raster or the path of a GeoTIFF") from None
+        raise DataError(f"cannot read {raster_or_path!r} as a raster ({error}); give an "
+                        "rsgeo.data.Raster or the path of a GeoTIFF") from None
 
 
 def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
@@ -316,8 +318,8 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
     """
     check_choice(method, "method", _METHODS)
     if raster.crs is None:
-        raise ValueError(f"raster {raster.name!r} has no CRS; reprojecting needs to know "
-                         "which CRS its coordinates are in")
+        raise CRSError(f"raster {raster.name!r} has no CRS; reprojecting needs to know "
+                       "which CRS its coordinates are in")
     src_crs, dst = as_crs(raster.crs, "raster.crs"), as_crs(dst_crs, "dst_crs")
     size = abs(raster.transform.a) if resolution is None else resolution
 
@@ -341,9 +343,9 @@ def _fit(gcps, kind, order):
     """Map -> image model of the enabled GCPs."""
     if kind == "polynomial":
         return gcps.fit(1 if order is None else order)
-    fit_transform = getattr(_gcp, "fit_transform", None)   # rsgeo.gcp's other model kinds
+    fit_transform = getattr(_transforms, "fit_transform", None)   # the other model kinds
     if fit_transform is None:
-        raise ValueError(f"kind {kind!r} is not available; use kind='polynomial' with an order")
+        raise GCPError(f"kind {kind!r} is not available; use kind='polynomial' with an order")
     return fit_transform(gcps.map_xy[gcps.enabled], gcps.image_xy[gcps.enabled], kind, order)
 
 
@@ -364,7 +366,7 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     gcps : rsgeo.gcp.GCPSet
         With the map coordinates' CRS in ``gcps.crs`` when ``dst_crs`` is given.
     kind : str
-        ``"polynomial"``, or another kind that ``rsgeo.gcp.fit_transform`` knows.
+        ``"polynomial"``, or another kind that ``rsgeo.transforms.fit_transform`` knows.
     order : {1, 2, 3} or None
         Polynomial degree (None for kinds without one, e.g. "helmert").
     resolution : float, optional
@@ -397,7 +399,7 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     """
     check_choice(method, "method", _METHODS)
     if not isinstance(gcps, GCPSet):
-        raise ValueError(f"gcps must be an rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
+        raise TypeError(f"gcps must be an rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
     raster = _as_raster(raster_or_path)
     model = _fit(gcps, kind, order)
     reverse = (model.reverse() if hasattr(model, "reverse") else model.inverse())
@@ -407,8 +409,8 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     if dst_crs is not None:
         dst = as_crs(dst_crs, "dst_crs")
         if src_crs is None:
-            raise ValueError("the GCPs have no CRS (gcps.crs is None); set it to reproject "
-                             "into dst_crs")
+            raise CRSError("the GCPs have no CRS (gcps.crs is None); set it to reproject "
+                           "into dst_crs")
         if dst != src_crs:
             pixel_to_map = _then_transform(reverse, src_crs, dst)
             mapping = CRSMapping(model, src_crs, dst)

@@ -12,8 +12,9 @@ Matching = choosing, for each adjustment segment k, the reference segment
 paper searches this space with a genetic algorithm whose fitness rewards
 similar sizes and similar spatial layout.
 
-Reading of the paper's equations (the OCR of eqs. 2 and 6 is garbled)
-----------------------------------------------------------------------
+Notes
+-----
+**Reading of the paper's equations** (the OCR of eqs. 2 and 6 is garbled).
 Several adjustment segments may belong to one reference segment (the paper's
 optimum [1 1 1 2 2 2 3 3 3 4 4 4 5]), so sizes and positions are compared per
 reference label j, over the group G_j = {k : solution[k] = j}:
@@ -28,8 +29,7 @@ reference label j, over the group G_j = {k : solution[k] = j}:
 Distances and areas are in map units (pixels × pixel size), which accounts for
 the images' different resolutions as the paper asks.
 
-Beyond the paper: the "compact" fitness
----------------------------------------
+**Beyond the paper: the "compact" fitness.**
 The paper's size term rewards piling unrelated segments onto a reference
 segment that is short of area (each one fills part of the shortfall), while
 leaving a segment unmatched (0) never helps it. ``variant="compact"`` keeps FA
@@ -42,7 +42,7 @@ its members unmatched, which costs S_R(j)) and is left out of the layout term.
 Solutions without many-to-one groups score the same with both variants.
 """
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from itertools import permutations
 from math import factorial
 
@@ -51,12 +51,26 @@ from numba import njit
 
 from . import gcp, tiepoints
 from ._checks import as_points, check_choice, check_range
+from .errors import GCPError, RsgeoError
 
 __all__ = [
-    "BITS_PER_GENE", "COMPACT_SPREAD", "VARIANTS", "Mesh", "fitness_batch", "group_spread",
-    "fitness", "encode", "decode", "MatchResult", "genetic_match", "exhaustive_match",
-    "optimum_match", "qap_match", "matched_centroids", "true_matching", "Registration",
+    "BITS_PER_GENE",
+    "COMPACT_SPREAD",
+    "VARIANTS",
+    "MatchResult",
+    "Mesh",
+    "decode",
+    "encode",
+    "exhaustive_match",
+    "fitness",
+    "fitness_batch",
+    "genetic_match",
+    "group_spread",
+    "matched_centroids",
+    "optimum_match",
+    "qap_match",
     "register_by_regions",
+    "true_matching",
 ]
 
 BITS_PER_GENE = 8
@@ -65,7 +79,7 @@ VARIANTS = ("paper", "compact")
 
 
 @dataclass
-class Mesh:
+class Mesh:  # numpydoc ignore=PR02
     """A relational mesh: segment centroids and areas, distances derived.
 
     Parameters
@@ -93,12 +107,13 @@ class Mesh:
         self.centroids = as_points(self.centroids, "centroids") * float(self.pixel_size)
         self.areas = np.asarray(self.areas, dtype=np.float64).ravel() * float(self.pixel_size) ** 2
         if len(self.centroids) < 3:
-            raise ValueError(f"a relational mesh needs at least 3 segments, got {len(self.centroids)}")
+            raise RsgeoError(f"a relational mesh needs at least 3 segments, got "
+                             f"{len(self.centroids)}")
         if len(self.areas) != len(self.centroids):
-            raise ValueError(f"centroids and areas must describe the same segments, got {len(self.centroids)} "
-                             f"centroids and {len(self.areas)} areas")
+            raise RsgeoError(f"centroids and areas must describe the same segments, got "
+                             f"{len(self.centroids)} centroids and {len(self.areas)} areas")
         if not (np.isfinite(self.areas).all() and (self.areas > 0).all()):
-            raise ValueError("every segment area must be a positive number")
+            raise RsgeoError("every segment area must be a positive number")
         difference = self.centroids[:, np.newaxis] - self.centroids[np.newaxis]
         self.distances = np.hypot(difference[..., 0], difference[..., 1])
 
@@ -111,9 +126,10 @@ def _as_solutions(solutions, n, m):
     if solutions.ndim == 1:
         solutions = solutions[np.newaxis]
     if solutions.shape[1] != n:
-        raise ValueError(f"a solution needs one label per adjustment segment ({n}), got {solutions.shape[1]}")
+        raise RsgeoError(f"a solution needs one label per adjustment segment ({n}), got "
+                         f"{solutions.shape[1]}")
     if solutions.min() < 0 or solutions.max() > m:
-        raise ValueError(f"labels must be 0 (no match) to {m} (the reference segments), "
+        raise RsgeoError(f"labels must be 0 (no match) to {m} (the reference segments), "
                          f"got {solutions.min()} to {solutions.max()}")
     return solutions.astype(np.intp)
 
@@ -227,7 +243,8 @@ def _fitness_kernel(solutions, reference_areas, reference_distances, adjustment_
 
 
 def _fitness_numpy(solutions, reference, adjustment, alpha=0.5, variant="paper"):
-    """:func:`fitness_batch` in plain NumPy, term by term (the tests check one against the other)."""
+    """:func:`fitness_batch` in plain NumPy, term by term (the tests check one against the other).
+    """
     m, n = len(reference), len(adjustment)
     solutions = _as_solutions(solutions, n, m)
     group_area, group_centroid, spread, members = _groups(solutions, m, adjustment)
@@ -244,7 +261,8 @@ def _fitness_numpy(solutions, reference, adjustment, alpha=0.5, variant="paper")
     pairs = used[:, :, np.newaxis] & used[:, np.newaxis] & np.triu(np.ones((m, m), bool), 1)
     reference_sum = (reference.distances * pairs).sum(axis=(1, 2))
     error_sum = (np.abs(reference.distances - adjustment_distance) * pairs).sum(axis=(1, 2))
-    dme = np.where(reference_sum > 0, error_sum / np.where(reference_sum > 0, reference_sum, 1.0), 1.0)
+    dme = np.where(reference_sum > 0,
+                   error_sum / np.where(reference_sum > 0, reference_sum, 1.0), 1.0)
     layout_fitness = np.clip(1.0 - dme, 0.0, 1.0)
     return alpha * size_fitness + (1 - alpha) * layout_fitness
 
@@ -303,7 +321,8 @@ def _groups(solutions, m, adjustment):
     areas, (x, y) = adjustment.areas, adjustment.centroids.T
     group_area = group_sum(areas)
     safe_area = np.where(group_area > 0, group_area, 1.0)
-    group_centroid = np.stack([group_sum(areas * x), group_sum(areas * y)], axis=-1) / safe_area[..., None]
+    group_centroid = (np.stack([group_sum(areas * x), group_sum(areas * y)], axis=-1)
+                      / safe_area[..., None])
     # polar moment of disks of area S about the group centroid: S·(|c − c_G|² + S / 2π)
     moment = (group_sum(areas * (x**2 + y**2 + areas / (2 * np.pi)))
               - group_area * np.sum(group_centroid**2, axis=-1))
@@ -400,9 +419,10 @@ def encode(solution, bits=BITS_PER_GENE):
     """
     solution = np.asarray(solution, dtype=np.int64)
     if solution.min() < 0 or solution.max() >= 2**bits:
-        raise ValueError(f"labels must fit in {bits} bits (0 to {2**bits - 1})")
+        raise RsgeoError(f"labels must fit in {bits} bits (0 to {2**bits - 1})")
     powers = 2 ** np.arange(bits - 1, -1, -1)
-    return ((solution[..., np.newaxis] // powers) % 2).reshape(solution.shape[:-1] + (-1,)).astype(np.uint8)
+    bits_of = (solution[..., np.newaxis] // powers) % 2
+    return bits_of.reshape(solution.shape[:-1] + (-1,)).astype(np.uint8)
 
 
 def decode(chromosome, bits=BITS_PER_GENE):
@@ -436,9 +456,10 @@ def decode(chromosome, bits=BITS_PER_GENE):
     """
     chromosome = np.asarray(chromosome, dtype=np.int64)
     if chromosome.shape[-1] % bits:
-        raise ValueError(f"a chromosome holds {bits} bits per gene; {chromosome.shape[-1]} bits is not a multiple")
+        raise RsgeoError(f"a chromosome holds {bits} bits per gene; {chromosome.shape[-1]} bits "
+                         "is not a multiple")
     if not np.isin(chromosome, (0, 1)).all():
-        raise ValueError("a chromosome holds only 0 and 1")
+        raise RsgeoError("a chromosome holds only 0 and 1")
     genes = chromosome.reshape(chromosome.shape[:-1] + (-1, bits))
     return genes @ (2 ** np.arange(bits - 1, -1, -1))
 
@@ -479,8 +500,9 @@ def _diversity(labels, m):
     return float(1.0 - counts.reshape(n, m + 1).max(axis=1).mean() / count)
 
 
-def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1000, generations=600,
-                  elite_fraction=0.05, selection="tournament", crossover_rate=0.9, mutation_rate=None,
+def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1000,
+                  generations=600, elite_fraction=0.05, selection="tournament",
+                  crossover_rate=0.9, mutation_rate=None,
                   tournament_size=2, target_fitness=None, encoding="binary", variant="paper",
                   stall_generations=200, crossover=None):
     """The paper's genetic algorithm: the adjustment segments' reference labels that maximise FA.
@@ -578,14 +600,14 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     check_choice(crossover, "crossover", ("one-point", "uniform"))
     check_range(elite_fraction, "elite_fraction", 0, 1)
     if int(population_size) < 2 or int(generations) < 1:
-        raise ValueError(f"population_size must be at least 2 and generations at least 1, "
+        raise RsgeoError(f"population_size must be at least 2 and generations at least 1, "
                          f"got {population_size} and {generations}")
     if not 1 <= int(tournament_size) <= int(population_size):
-        raise ValueError(f"tournament_size must be 1 to population_size ({population_size}), "
+        raise RsgeoError(f"tournament_size must be 1 to population_size ({population_size}), "
                          f"got {tournament_size}")
     if stall_generations is not None and int(stall_generations) < 1:
-        raise ValueError(f"stall_generations must be at least 1 (or None to run every generation), "
-                         f"got {stall_generations}")
+        raise RsgeoError("stall_generations must be at least 1 (or None to run every "
+                         f"generation), got {stall_generations}")
     check_range(crossover_rate, "crossover_rate", 0, 1, "a probability")
     rng = np.random.default_rng(seed)
     m, n = len(reference), len(adjustment)
@@ -633,15 +655,18 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
             mask = (rng.random((len(mothers), genes_per_individual)) < 0.5) | ~cross[:, np.newaxis]
         else:
             points = rng.integers(1, genes_per_individual, len(mothers))
-            mask = (np.arange(genes_per_individual) < points[:, np.newaxis]) | ~cross[:, np.newaxis]
-        offspring = np.concatenate([np.where(mask, mothers, fathers), np.where(mask, fathers, mothers)])
+            mask = ((np.arange(genes_per_individual) < points[:, np.newaxis])
+                    | ~cross[:, np.newaxis])
+        offspring = np.concatenate([np.where(mask, mothers, fathers),
+                                    np.where(mask, fathers, mothers)])
         children.append(_mutate(rng, offspring[:parent_count], mutation_rate, encoding, m))
         population = np.concatenate(children)
     return MatchResult(best_solution, best_fitness, history, evaluations)
 
 
 def _mutate(rng, offspring, rate, encoding, m):
-    """Each bit flipped (binary) or each gene reset to a random label 0..m (integer) with probability rate."""
+    """Each bit flipped (binary) or each gene reset to a random label 0..m (integer), with
+    probability rate."""
     flips = rng.random(offspring.shape) < rate
     if encoding == "binary":
         return np.where(flips, 1 - offspring, offspring).astype(np.uint8)
@@ -656,7 +681,8 @@ def _select(rng, scores, count, selection, tournament_size):
     return contestants[np.arange(count), np.argmax(scores[contestants], axis=1)]
 
 
-def exhaustive_match(reference, adjustment, alpha=0.5, one_to_one=None, batch=200_000, variant="paper"):
+def exhaustive_match(reference, adjustment, alpha=0.5, one_to_one=None, batch=200_000,
+                     variant="paper"):
     """The true optimum of FA by trying every solution.
 
     Parameters
@@ -698,7 +724,8 @@ def exhaustive_match(reference, adjustment, alpha=0.5, one_to_one=None, batch=20
     if one_to_one is None:
         one_to_one = (m + 1) ** n > 5_000_000
     if one_to_one and n > m:
-        raise ValueError(f"a one-to-one match needs no more adjustment segments ({n}) than reference ones ({m})")
+        raise RsgeoError(f"a one-to-one match needs no more adjustment segments ({n}) than "
+                         f"reference ones ({m})")
     if one_to_one:
         candidates = permutations(range(1, m + 1), n)
         chunks = (np.array([c for _, c in zip(range(batch), candidates)], dtype=np.intp)
@@ -779,7 +806,8 @@ def optimum_match(reference, adjustment, alpha=0.5, variant="paper", incumbent=N
     # try the labels of the most similar areas first, 0 last: good solutions come early
     candidates = np.empty((n, m + 1), dtype=np.int64)
     for depth, k in enumerate(order):
-        candidates[depth, :m] = np.argsort(np.abs(reference.areas - adjustment.areas[k]), kind="stable") + 1
+        closest = np.argsort(np.abs(reference.areas - adjustment.areas[k]), kind="stable")
+        candidates[depth, :m] = closest + 1
     candidates[:, m] = 0
     best_solution, best = np.zeros(n, dtype=np.int64), -np.inf
     if incumbent is not None:
@@ -919,7 +947,8 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
 
     m, n = len(reference), len(adjustment)
     if m != n:
-        raise ValueError(f"qap_match pairs segments one to one: it needs as many reference ({m}) as "
+        raise RsgeoError(f"qap_match pairs segments one to one: it needs as many reference "
+                         f"({m}) as "
                          f"adjustment ({n}) segments")
     rng = np.random.default_rng(seed)
     best_solution, best_fitness = None, -np.inf
@@ -934,7 +963,7 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
 
 
 def matched_centroids(solution, reference, adjustment):
-    """GCP pairs from a solution: (adjustment group centroid, reference centroid) per matched label.
+    """GCP pairs from a solution: (adjustment group centroid, reference centroid) per label.
 
     An adjustment group's centroid is the area-weighted mean of its members'
     centroids.
@@ -1023,37 +1052,10 @@ def true_matching(reference_xy, adjustment_xy, tolerance):
     return np.where(distance <= tolerance, nearest + 1, 0).astype(np.intp), distance
 
 
-@dataclass
-class Registration:
-    """The outcome of :func:`register_by_regions`.
-
-    Attributes
-    ----------
-    match : MatchResult
-        The GA's matching of adjustment segments to reference labels.
-    map_xy, image_xy : ndarray, shape (k, 2)
-        The GCPs: matched reference centroids (map units) and adjustment
-        centroids (adjustment pixels), one per matched reference label.
-    model : rsgeo.gcp.PolynomialModel
-        Affine model map -> adjustment image, fitted on the kept GCPs.
-    kept : ndarray of bool
-        GCPs that survived refinement.
-    rms_all, rms_kept : float
-        Lecture's RMS (pixels) of the affine fit on all GCPs, and of the refined model on the kept ones.
-    """
-
-    match: MatchResult
-    map_xy: np.ndarray
-    image_xy: np.ndarray
-    model: object
-    kept: np.ndarray
-    rms_all: float
-    rms_kept: float
-
-
-def register_by_regions(reference, adjustment, reference_transform, reference_pixel, adjustment_pixel,
-                        alpha=0.5, seed=None, tolerance=1.0, min_gcps=4, variant="paper"):
-    """The paper's registration: match forest segments by the GA, then an affine model from centroids.
+def register_by_regions(reference, adjustment, reference_transform, reference_pixel,
+                        adjustment_pixel, alpha=0.5, seed=None, tolerance=1.0, min_gcps=4,
+                        variant="paper"):
+    """The paper's registration: forest segments matched by the GA, an affine model of centroids.
 
     The GA paper, section 4: the matched centroids are GCPs for an affine
     transformation; GCPs with large errors are removed (here exactly as
@@ -1069,23 +1071,27 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
         Geotransform of the reference image (its centroids become map coordinates).
     reference_pixel, adjustment_pixel : float
         Pixel sizes (map units), to compare the meshes in the same units.
-    alpha, seed, variant
+    alpha, seed
         As :func:`genetic_match`.
     tolerance : float
         Refinement tolerance, adjustment pixels.
     min_gcps : int
         Fewest GCPs refinement keeps (capped at the number matched).
+    variant : {"paper", "compact"}
+        As :func:`genetic_match`.
 
     Returns
     -------
-    Registration
+    rsgeo.tiepoints.Registration
+        The refined affine model, the GCPs (matched reference centroids, map
+        units; adjustment centroids, adjustment pixels) and the GA's ``match``.
 
     Raises
     ------
     ValueError
         If a mesh cannot be built from the segments (see :class:`Mesh`), fewer
         than 3 segments are matched, or as :func:`genetic_match` and
-        :func:`rsgeo.gcp.refine_gcps` for the other arguments.
+        :func:`rsgeo.accuracy.refine_gcps` for the other arguments.
 
     References
     ----------
@@ -1101,9 +1107,9 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
     image_xy = adjustment_xy / adjustment_pixel
     map_xy = reference.map_centroids(reference_transform)[labels - 1]
     if len(labels) < 3:
-        raise ValueError(f"only {len(labels)} segments were matched; an affine model needs at least 3")
+        raise GCPError(f"only {len(labels)} segments were matched; an affine model needs at "
+                       "least 3")
     # the pipeline every registration shares: tie points -> GCPSet -> model -> refinement
     result = tiepoints.register(gcp.GCPSet(map_xy, image_xy), "polynomial", 1, tolerance,
                                 min(min_gcps, len(labels)))
-    return Registration(match, map_xy, image_xy, result.model, result.kept, result.rms_all,
-                        result.rms_kept)
+    return replace(result, match=match)

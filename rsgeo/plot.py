@@ -8,14 +8,14 @@ import weakref
 
 import numpy as np
 
-from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 from ._i18n import _
+from .errors import GCPError, RsgeoError
+from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 from .resample import bilinear_weights, keys_weights
 
 __all__ = [
-    "FIGURE_PROBLEMS", "FIGURE_PROBLEM_PREFIX", "show_image", "grid_path", "draw_grid", "draw_mesh",
-    "draw_neighbour_weights", "draw_stretch_frame", "fix_layout", "animation_html",
-    "figure_problems", "audit_rendered_figures", "label_points", "draw_residual_arrows",
+    "show_image", "grid_path", "draw_grid", "draw_mesh", "draw_neighbour_weights",
+    "draw_stretch_frame", "fix_layout", "animation_html", "label_points", "draw_residual_arrows",
     "draw_tiepoints",
 ]
 
@@ -84,12 +84,13 @@ def show_image(ax, image, transform=None, title="", cmap="gray", label="DN", vmi
         left, top = transform @ (0, 0)
         right, bottom = transform @ (cols, rows)
         extent = (left / scale, right / scale, bottom / scale, top / scale)
-        xlabel, ylabel = _("easting ({units})").format(units=units), _("northing ({units})").format(
-            units=units)
+        xlabel = _("easting ({units})").format(units=units)
+        ylabel = _("northing ({units})").format(units=units)
     else:
         extent = (0, cols, rows, 0)
         xlabel, ylabel = _("column (pixels)"), _("row (pixels)")
-    artist = ax.imshow(image, cmap=cmap, extent=extent, vmin=vmin, vmax=vmax, interpolation="nearest")
+    artist = ax.imshow(image, cmap=cmap, extent=extent, vmin=vmin, vmax=vmax,
+                       interpolation="nearest")
     ax.set(title=title, xlabel=xlabel, ylabel=ylabel)
     if colorbar:
         ax.figure.colorbar(artist, ax=ax, label=label, shrink=0.8)
@@ -127,11 +128,12 @@ def grid_path(lines):
     for cols, rows in lines:
         cols, rows = np.asarray(cols, dtype=float).ravel(), np.asarray(rows, dtype=float).ravel()
         if cols.shape != rows.shape:
-            raise ValueError(f"each grid line needs as many cols as rows, got {cols.size} and {rows.size}")
+            raise RsgeoError(f"each grid line needs as many cols as rows, got {cols.size} and "
+                             f"{rows.size}")
         parts_c += [cols, [np.nan]]
         parts_r += [rows, [np.nan]]
     if not parts_c:
-        raise ValueError("grid_path needs at least one (cols, rows) line")
+        raise RsgeoError("grid_path needs at least one (cols, rows) line")
     return np.concatenate(parts_c), np.concatenate(parts_r)
 
 
@@ -197,7 +199,8 @@ def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
     centroids = np.asarray(centroids, dtype=float)
     if edges and len(centroids) > 1:
         i, j = np.triu_indices(len(centroids), k=1)
-        ax.add_collection(LineCollection(np.stack([centroids[i], centroids[j]], axis=1), colors=color,
+        ax.add_collection(LineCollection(np.stack([centroids[i], centroids[j]], axis=1),
+                                         colors=color,
                                          alpha=0.25, linewidths=0.7))
     points = ax.scatter(*centroids.T, s=40, color=color, edgecolor="black", zorder=3)
     for k, (x, y) in enumerate(centroids):
@@ -259,7 +262,8 @@ def draw_neighbour_weights(ax, position, method):
         for i, ox in enumerate(offsets):
             centre = (left + ox + 0.5, top + oy + 0.5)
             weight = weights[j, i]
-            ax.scatter(*centre, s=2000 * abs(weight), color="tab:red" if weight < 0 else "tab:blue", alpha=0.6)
+            ax.scatter(*centre, s=2000 * abs(weight),
+                       color="tab:red" if weight < 0 else "tab:blue", alpha=0.6)
             ax.annotate(f"{weight:.2f}", centre, ha="center", va="center", fontsize=8)
     ax.scatter(col, row, marker="x", color="black", s=80)
     ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel=_("column (px)"),
@@ -314,10 +318,12 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
 
     axes = list(np.ravel(axes))
     if len(axes) != 3:
-        raise ValueError(f"draw_stretch_frame needs three axes (mosaic, histograms, scatter), got {len(axes)}")
+        raise RsgeoError(f"draw_stretch_frame needs three axes (mosaic, histograms, scatter), got "
+                         f"{len(axes)}")
     gain_t, offset_t = 1 + t * (gain - 1), t * offset
     artists = _STRETCH_ARTISTS.get(axes[0])
-    if (artists is not None and (artists["x_image"] is not x_image or artists["y_image"] is not y_image
+    if (artists is not None and (artists["x_image"] is not x_image
+                                 or artists["y_image"] is not y_image
                                  or any(artist.axes is not ax or artist not in ax.get_children()
                                         for artist, ax in zip(artists["owned"], axes)))):
         artists = None
@@ -365,7 +371,8 @@ def _draw_stretch_axes(axes, x_image, y_image, mosaic, split, counts, bins):
     axes[2].scatter(np.ravel(x_image)[::5], np.ravel(y_image)[::5], s=2, alpha=0.3)
     (line,) = axes[2].plot([0, 255], [0, 255], color="tab:red")
     axes[2].set(xlabel="A = X (DN)", ylabel="B = Y (DN)", xlim=(0, 255), ylim=(0, 255))
-    return {"x_image": x_image, "y_image": y_image, "mosaic": mosaic_artist, "histogram": histogram,
+    return {"x_image": x_image, "y_image": y_image, "mosaic": mosaic_artist,
+            "histogram": histogram,
             "line": line, "b_peak": int(b_counts.max()), "owned": (mosaic_artist, histogram, line)}
 
 
@@ -433,162 +440,12 @@ def animation_html(animation):
         If ``animation`` is not a matplotlib Animation (nothing is checked
         here); errors while drawing a frame propagate.
     """
-    import re
 
     from IPython.display import HTML
 
     html = animation.to_jshtml()
     _pyplot().close(animation._fig)
     return HTML(re.sub(r"<link[^>]*font-awesome[^>]*>", "", html))
-
-
-# -- Figure audit: every figure readable on its own -------------------------
-
-_UNIT = re.compile(r"\(.*\S.*\)|\[.*\S.*\]|\bDN\b")   # DN is its own unit
-
-
-def _has_unit(label):
-    return bool(_UNIT.search(label or ""))
-
-
-def _shows_tick_labels(axis):
-    return any(tick.get_visible() and tick.get_text() for tick in axis.get_ticklabels())
-
-
-def _legend_colour(handle):
-    """The RGBA colour a legend handle is drawn in, or None when it has none to speak of."""
-    from matplotlib.colors import to_rgba, to_rgba_array
-
-    for getter in ("get_color", "get_facecolor"):
-        if hasattr(handle, getter):
-            try:
-                colours = to_rgba_array(getattr(handle, getter)())
-            except (TypeError, ValueError):
-                return None
-            return np.asarray(to_rgba(colours[0])) if len(colours) else None
-    return None
-
-
-def figure_problems(figure):
-    """What makes a figure hard to read on its own, as a list of sentences (empty: none).
-
-    The course's rules for a figure: every panel has a title (its own or the
-    figure's), every axis that shows tick labels has a label with its units in
-    parentheses or brackets ("row (px)", "ratio (–)"; "DN" counts as its own unit), every colour
-    bar a label with units, and no legend entry is drawn in the panel's
-    background colour (it would be invisible).
-
-    Parameters
-    ----------
-    figure : matplotlib.figure.Figure
-
-    Returns
-    -------
-    list of str
-        One sentence per problem, naming the panel.
-
-    Raises
-    ------
-    AttributeError
-        If ``figure`` is not a matplotlib Figure (nothing is checked here).
-
-    Examples
-    --------
-    >>> import matplotlib
-    >>> matplotlib.use("Agg")
-    >>> import matplotlib.pyplot as plt
-    >>> fig, ax = plt.subplots()
-    >>> _ = ax.plot([0, 1], [0, 1])
-    >>> figure_problems(fig)[0]
-    'panel 1 of a figure with no title: no title (set one on the panel or the figure)'
-    >>> _ = ax.set(title="a line", xlabel="x (m)", ylabel="y (m)")
-    >>> figure_problems(fig)
-    []
-    >>> plt.close(fig)
-    """
-    from matplotlib.colors import to_rgba
-
-    suptitle = figure._suptitle.get_text() if getattr(figure, "_suptitle", None) else ""
-    panels = [ax for ax in figure.axes if ax.get_visible() and ax.axison]
-    titled_positions = {tuple(np.round(ax.get_position().bounds, 4)) for ax in panels
-                        if ax.get_title() or ax.get_title("left") or ax.get_title("right")}
-    problems = []
-    for number, ax in enumerate(panels, start=1):
-        title = ax.get_title() or ax.get_title("left") or ax.get_title("right")
-        name = f"panel {number} ({title!r})" if title else (
-            f"panel {number} of {suptitle!r}" if suptitle else f"panel {number} of a figure with no title")
-        colorbar = getattr(ax, "_colorbar", None)
-        if colorbar is not None:
-            label = ax.get_ylabel() if colorbar.orientation == "vertical" else ax.get_xlabel()
-            if not _has_unit(label):
-                problems.append(f"{name}: colour bar label {label!r} has no units in parentheses")
-            continue
-        if not (title or suptitle or tuple(np.round(ax.get_position().bounds, 4)) in titled_positions):
-            problems.append(f"{name}: no title (set one on the panel or the figure)")
-        for axis_name, axis, label in (("x", ax.xaxis, ax.get_xlabel()), ("y", ax.yaxis, ax.get_ylabel())):
-            if _shows_tick_labels(axis) and not _has_unit(label):
-                problems.append(f"{name}: {axis_name} label {label!r} has no units in parentheses")
-        legend = ax.get_legend()
-        if legend is not None:
-            background = np.asarray(to_rgba(ax.get_facecolor()))[:3]
-            for handle, text in zip(legend.legend_handles, legend.get_texts()):
-                colour = _legend_colour(handle)
-                if colour is not None and colour[3] > 0 and np.abs(colour[:3] - background).max() < 0.1:
-                    problems.append(f"{name}: legend entry {text.get_text()!r} is drawn in the "
-                                    "background colour")
-    return problems
-
-
-FIGURE_PROBLEMS = []
-
-
-def audit_rendered_figures(to_stderr=False):
-    """Record :func:`figure_problems` of every figure as it is rendered (shown, saved, animated).
-
-    Each new problem is appended to ``FIGURE_PROBLEMS`` and, with ``to_stderr``, written to
-    standard error as a line starting with ``rsgeo figure problem:``. The book's build turns
-    this on in its kernels (environment variable ``RSGEO_AUDIT_FIGURES``, read by ``import
-    rsgeo``), where any standard-error output fails the build; the tests do the same when they
-    execute a notebook themselves. It patches matplotlib's ``FigureCanvasBase.print_figure``
-    for the running process only.
-
-    Parameters
-    ----------
-    to_stderr : bool
-        Also write each new problem to standard error.
-
-    Returns
-    -------
-    None
-        Only the first call patches matplotlib; later calls do nothing (the
-        first call's ``to_stderr`` stays in force).
-
-    Raises
-    ------
-    ImportError
-        If matplotlib is not installed.
-    """
-    import sys
-
-    from matplotlib.backend_bases import FigureCanvasBase
-
-    if getattr(FigureCanvasBase.print_figure, "_rsgeo_audit", False):
-        return
-    original = FigureCanvasBase.print_figure
-
-    def print_figure(self, *args, **kwargs):
-        for problem in figure_problems(self.figure):
-            if problem not in FIGURE_PROBLEMS:
-                FIGURE_PROBLEMS.append(problem)
-                if to_stderr:
-                    print(f"{FIGURE_PROBLEM_PREFIX}{problem}", file=sys.stderr)
-        return original(self, *args, **kwargs)
-
-    print_figure._rsgeo_audit = True
-    FigureCanvasBase.print_figure = print_figure
-
-
-FIGURE_PROBLEM_PREFIX = "rsgeo figure problem: "
 
 
 # -- GCP figures (chapters 2 and 3) ------------------------------------------
@@ -622,7 +479,8 @@ def label_points(ax, xy, names, color="white", outline="black", fontsize=8):
     xy = np.asarray(xy, dtype=float).reshape(-1, 2)
     names = list(names)
     if len(names) != len(xy):
-        raise ValueError(f"label_points needs one name per point, got {len(names)} names for {len(xy)} points")
+        raise RsgeoError(f"label_points needs one name per point, got {len(names)} names for "
+                         f"{len(xy)} points")
     stroke = [patheffects.withStroke(linewidth=2.5, foreground=outline)]
     return [ax.annotate(str(name), (x, y), xytext=(4, 4), textcoords="offset points", color=color,
                         fontsize=fontsize, path_effects=stroke) for name, (x, y) in zip(names, xy)]
@@ -644,11 +502,13 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
     image_xy : (n, 2) array_like
         Measured GCP positions (col, row).
     dx, dy : (n,) array_like
-        Residuals model - GCP, in pixels (rows down), as ``rsgeo.gcp.residuals`` returns.
+        Residuals model - GCP, in pixels (rows down), as ``rsgeo.accuracy.residuals`` returns.
     exaggeration : float
         How many times longer than the residual each arrow is drawn.
     key_px : float
         Length of the key arrow, in residual pixels.
+    color : str
+        Colour of the arrows and the key.
 
     Returns
     -------
@@ -663,10 +523,12 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
     image_xy = np.asarray(image_xy, dtype=float).reshape(-1, 2)
     dx, dy = np.asarray(dx, dtype=float), np.asarray(dy, dtype=float)
     if dx.shape != (len(image_xy),) or dy.shape != (len(image_xy),):
-        raise ValueError(f"dx and dy need one value per GCP ({len(image_xy)}), got shapes {dx.shape}, {dy.shape}")
+        raise GCPError(f"dx and dy need one value per GCP ({len(image_xy)}), got shapes "
+                       f"{dx.shape}, {dy.shape}")
     if not exaggeration > 0:
-        raise ValueError(f"exaggeration must be a positive number, got {exaggeration!r}")
-    # angles="xy" and scale_units="xy" draw in data coordinates: +dy goes down the image, as rows do
+        raise RsgeoError(f"exaggeration must be a positive number, got {exaggeration!r}")
+    # angles="xy" and scale_units="xy" draw in data coordinates: +dy goes down the image, as
+    # rows do
     arrows = ax.quiver(image_xy[:, 0], image_xy[:, 1], dx, dy, color=color, angles="xy",
                        scale_units="xy", scale=1 / exaggeration, width=0.005, edgecolor="black",
                        linewidth=0.5)
@@ -716,7 +578,7 @@ def draw_tiepoints(ax, points, notes, size=30, colours=None):
     points = np.asarray(points, dtype=float).reshape(-1, 2)
     notes = np.asarray(list(notes), dtype=object)
     if len(notes) != len(points):
-        raise ValueError(f"draw_tiepoints needs one verdict per point, got {len(notes)} for "
+        raise RsgeoError(f"draw_tiepoints needs one verdict per point, got {len(notes)} for "
                          f"{len(points)} points")
     colours = {**_TIEPOINT_COLOURS, **(colours or {})}
     artists = {}

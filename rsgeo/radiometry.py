@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import check_choice
+from .errors import CRSError, GridError, ImageError, RsgeoError
 from .resample import interpolate
 
 __all__ = [
@@ -78,7 +79,8 @@ class GainOffsetFit:
         try:
             values = np.asarray(x, dtype=np.float64)
         except (TypeError, ValueError):
-            raise ValueError(f"x must be numbers (DN of the image to correct), got {x!r}") from None
+            raise ImageError(f"x must be numbers (DN of the image to correct), got "
+                             f"{x!r}") from None
         return self.gain * values + self.offset
 
 
@@ -86,15 +88,15 @@ def _pair(x_image, y_image):
     x = np.asarray(x_image)
     y = np.asarray(y_image)
     if x.shape != y.shape:
-        raise ValueError(f"x_image and y_image must cover the same pixels (same shape), "
+        raise ImageError(f"x_image and y_image must cover the same pixels (same shape), "
                          f"got {x.shape} and {y.shape}; cut both to their overlap first")
     if x.size < 3:
-        raise ValueError(f"a regression needs at least 3 pixel pairs, got {x.size}")
+        raise ImageError(f"a regression needs at least 3 pixel pairs, got {x.size}")
     x, y = x.astype(np.float64), y.astype(np.float64)
     for name, values in (("x_image", x), ("y_image", y)):
         bad = int(np.count_nonzero(~np.isfinite(values)))
         if bad:
-            raise ValueError(
+            raise ImageError(
                 f"{name} holds {bad} NaN or infinite value(s) of {values.size}: every pixel pair "
                 "must be finite. Mask them first, e.g. keep = np.isfinite(x_image) & "
                 "np.isfinite(y_image), then fit x_image[keep], y_image[keep] (without smooth, "
@@ -125,12 +127,13 @@ def mean_filter(image, size=3):
     from scipy.ndimage import uniform_filter
 
     if int(size) != size or size < 1 or size % 2 == 0:
-        raise ValueError(f"filter size must be an odd positive integer (3, 5, 7 ...), got {size!r}")
+        raise RsgeoError(f"filter size must be an odd positive integer (3, 5, 7 ...), got "
+                         f"{size!r}")
     return uniform_filter(np.asarray(image, dtype=np.float64), size=int(size), mode="nearest")
 
 
 def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
-    """Fit Y = gain·X + offset between two co-registered images (the regression paper of chapter 5, IDRISI REGRESS).
+    """Fit Y = gain·X + offset between co-registered images (chapter 5's paper, IDRISI REGRESS).
 
     Parameters
     ----------
@@ -164,10 +167,10 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
     >>> fit = fit_gain_offset(x, 0.885 * x + 27.107)
     >>> round(fit.gain, 3), round(fit.offset, 3), round(fit.r, 3)
     (0.885, 27.107, 1.0)
-    >>> fit_gain_offset(np.where(x == 5, np.nan, x), x)
+    >>> fit_gain_offset(np.where(x == 5, np.nan, x), x)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ValueError: x_image holds 1 NaN or infinite value(s) of 100: every pixel pair must be finite. Mask them first, e.g. keep = np.isfinite(x_image) & np.isfinite(y_image), then fit x_image[keep], y_image[keep] (without smooth, which needs a full grid), or fill the gaps before filtering
+    rsgeo.errors.ImageError: x_image holds 1 NaN or infinite value(s) of 100: ... before filtering
     """
     check_choice(method, "method", FIT_METHODS)
     x, y = _pair(x_image, y_image)
@@ -177,7 +180,7 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
     sx, sy = x.std(), y.std()
     if sx == 0 or sy == 0:
         which = "x_image" if sx == 0 else "y_image"
-        raise ValueError(f"{which} is constant over the overlap: no regression is possible")
+        raise ImageError(f"{which} is constant over the overlap: no regression is possible")
     r = float(np.corrcoef(x, y)[0, 1])
     if method == "ols":
         gain = r * sy / sx
@@ -185,13 +188,15 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
         gain = np.sign(r) * sy / sx
     elif method == "orthogonal":
         cov = np.cov(x, y)
-        gain = (cov[1, 1] - cov[0, 0] + np.sqrt((cov[1, 1] - cov[0, 0]) ** 2 + 4 * cov[0, 1] ** 2)) / (2 * cov[0, 1])
+        spread = cov[1, 1] - cov[0, 0]
+        gain = (spread + np.sqrt(spread ** 2 + 4 * cov[0, 1] ** 2)) / (2 * cov[0, 1])
     else:
         from scipy.stats import theilslopes
 
         sample = np.random.default_rng(0).choice(x.size, size=min(2000, x.size), replace=False)
         gain = theilslopes(y[sample], x[sample])[0]
-    offset = float(y.mean() - gain * x.mean()) if method != "theil_sen" else float(np.median(y - gain * x))
+    offset = (float(y.mean() - gain * x.mean()) if method != "theil_sen"
+              else float(np.median(y - gain * x)))
     residual = y - (gain * x + offset)
     return GainOffsetFit(float(gain), offset, r, r * r, float(residual.std()), int(x.size), method)
 
@@ -237,10 +242,10 @@ def apply_gain_offset(image, gain, offset, rounding="truncate"):
     check_choice(rounding, "rounding", ("truncate", "nearest"))
     image = np.asarray(image)
     if image.dtype.kind not in "ui":
-        raise ValueError(f"apply_gain_offset truncates to integers: the image must have an integer dtype, "
-                         f"got {image.dtype}")
+        raise ImageError(f"apply_gain_offset truncates to integers: the image must have an "
+                         f"integer dtype, got {image.dtype}")
     if not (np.isfinite(gain) and np.isfinite(offset)):
-        raise ValueError(f"gain and offset must be finite numbers, got {gain!r} and {offset!r}")
+        raise RsgeoError(f"gain and offset must be finite numbers, got {gain!r} and {offset!r}")
     info = np.iinfo(image.dtype)
     exact = gain * image.astype(np.float64) + offset
     stretched = np.trunc(exact) if rounding == "truncate" else np.floor(exact + 0.5)
@@ -269,13 +274,13 @@ def minmax_stretch(x_image, y_image):
     """
     x, y = _pair(x_image, y_image)
     if x.max() == x.min():
-        raise ValueError("x_image is constant: a min-max stretch is undefined")
+        raise ImageError("x_image is constant: a min-max stretch is undefined")
     gain = (y.max() - y.min()) / (x.max() - x.min())
     return float(gain), float(y.min() - gain * x.min())
 
 
 def match_histograms(image, reference):
-    """Histogram matching (scikit-image): the image's values remapped to the reference's distribution.
+    """Histogram matching (scikit-image): the values remapped to the reference's distribution.
 
     Parameters
     ----------
@@ -317,10 +322,10 @@ def match_histograms(image, reference):
     for name, values in (("image", image), ("reference", reference)):
         values = np.asarray(values)
         if values.dtype.kind not in "uif" or values.size == 0:
-            raise ValueError(f"{name} must be a non-empty array of integers or floats, got dtype "
+            raise ImageError(f"{name} must be a non-empty array of integers or floats, got dtype "
                              f"{values.dtype} and shape {values.shape}")
         if not np.isfinite(values).all():
-            raise ValueError(f"{name} holds NaN or infinite values; mask or fill them before "
+            raise ImageError(f"{name} holds NaN or infinite values; mask or fill them before "
                              "matching histograms")
         arrays.append(values)
     image, reference = arrays
@@ -358,10 +363,10 @@ def overlap(raster_a, raster_b):
         If the CRSs differ or the rasters do not overlap.
     """
     if raster_a.crs != raster_b.crs:
-        raise ValueError(f"the rasters are in different CRSs ({raster_a.crs or 'no CRS'} and "
-                         f"{raster_b.crs or 'no CRS'}); pairing them pixel by pixel would mix two "
-                         "datums or projections: reproject one first with "
-                         "rsgeo.georef.reproject(raster, dst_crs)")
+        raise CRSError(f"the rasters are in different CRSs ({raster_a.crs or 'no CRS'} and "
+                       f"{raster_b.crs or 'no CRS'}); pairing them pixel by pixel would mix two "
+                       "datums or projections: reproject one first with "
+                       "rsgeo.georef.reproject(raster, dst_crs)")
     west_a, south_a, east_a, north_a = raster_a.bounds
     west_b, south_b, east_b, north_b = raster_b.bounds
     west, east = max(west_a, west_b), min(east_a, east_b)
@@ -372,8 +377,8 @@ def overlap(raster_a, raster_b):
     col_start, row_start = int(np.ceil(col_start - 1e-6)), int(np.ceil(row_start - 1e-6))
     col_stop, row_stop = int(np.floor(col_stop + 1e-6)), int(np.floor(row_stop + 1e-6))
     if col_stop - col_start < 1 or row_stop - row_start < 1:
-        raise ValueError(f"the rasters {raster_a.name or 'A'} and {raster_b.name or 'B'} do not overlap on "
-                         "the ground")
+        raise GridError(f"the rasters {raster_a.name or 'A'} and {raster_b.name or 'B'} do not "
+                        f"overlap on the ground")
     a_part = raster_a.array[row_start:row_stop, col_start:col_stop]
     rows, cols = np.mgrid[row_start:row_stop, col_start:col_stop] + 0.5
     x, y = raster_a.transform @ (cols, rows)
@@ -409,11 +414,11 @@ def concatenate_halves(left_image, right_image, split=None):
     """
     left_image, right_image = np.asarray(left_image), np.asarray(right_image)
     if left_image.shape != right_image.shape:
-        raise ValueError(f"both images must cover the same ground (same shape), got {left_image.shape} "
-                         f"and {right_image.shape}")
+        raise ImageError(f"both images must cover the same ground (same shape), got "
+                         f"{left_image.shape} and {right_image.shape}")
     split = left_image.shape[-1] // 2 if split is None else int(split)
     if not 1 <= split <= left_image.shape[-1] - 1:
-        raise ValueError(f"split must leave at least one column on each side (1 to "
+        raise RsgeoError(f"split must leave at least one column on each side (1 to "
                          f"{left_image.shape[-1] - 1}), got {split}")
     return np.concatenate([left_image[..., :split], right_image[..., split:]], axis=-1), split
 
@@ -448,8 +453,9 @@ def seam_step(mosaic, split, width=3):
     """
     mosaic = np.asarray(mosaic, dtype=np.float64)
     if not width <= split <= mosaic.shape[-1] - width:
-        raise ValueError(f"split {split} leaves fewer than {width} columns on one side")
-    return float(abs(mosaic[..., split:split + width].mean() - mosaic[..., split - width:split].mean()))
+        raise RsgeoError(f"split {split} leaves fewer than {width} columns on one side")
+    right, left = mosaic[..., split:split + width], mosaic[..., split - width:split]
+    return float(abs(right.mean() - left.mean()))
 
 
 def seam_metrics(corrected, reference):
@@ -493,7 +499,7 @@ def seam_metrics(corrected, reference):
 
     a, b = _pair(corrected, reference)
     if b.std() == 0:
-        raise ValueError("reference is constant: its spread is 0 and no contrast ratio exists")
+        raise ImageError("reference is constant: its spread is 0 and no contrast ratio exists")
     return {"mean_difference": float(a.mean() - b.mean()),
             "std_difference": float(a.std() - b.std()),
             "std_ratio": float(a.std() / b.std()),

@@ -73,12 +73,21 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 from numba import njit, prange  # noqa: E402
 
-from ._checks import as_image, as_shape, check_choice
+from ._checks import (
+    as_bands_first,
+    as_image,
+    as_nodata,
+    as_num_threads,
+    as_resolution,
+    as_scale,
+    as_shape,
+    check_choice,
+)
+from .errors import GridError, ModelError, RsgeoError
 
 __all__ = [
     "METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
-    "check_num_threads", "check_nodata", "check_bands_first", "grid_positions",
-    "warp", "check_scale", "grid_scale", "check_resolution", "suggested_grid",
+    "grid_positions", "warp", "grid_scale", "suggested_grid",
 ]
 
 METHODS = ("nearest", "bilinear", "cubic")
@@ -295,12 +304,12 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, sc
     >>> interpolate(image, [1.5, 5.0], [0.5, 0.5], "nearest", nodata=255)
     array([100, 255], dtype=uint8)
     """
-    image = check_bands_first(as_image(image))
+    image = as_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
-    num_threads = check_num_threads(num_threads)
+    num_threads = as_num_threads(num_threads)
     cols, rows = _check_positions(cols, rows)
-    nodata = check_nodata(nodata, image.dtype)
-    scale = check_scale(scale)
+    nodata = as_nodata(nodata, image.dtype)
+    scale = as_scale(scale)
 
     shape = (image.shape[0],) + cols.shape if image.ndim == 3 else cols.shape
     # rows of positions for the threads: the last axis, or blocks of a long 1-D list
@@ -315,9 +324,11 @@ def _check_positions(cols, rows):
     cols = np.asarray(cols, dtype=np.float64)
     rows = np.asarray(rows, dtype=np.float64)
     if cols.shape != rows.shape:
-        raise ValueError(f"cols and rows must have the same shape, got {cols.shape} and {rows.shape}")
+        raise RsgeoError(f"cols and rows must have the same shape, got {cols.shape} and "
+                         f"{rows.shape}")
     if not (np.isfinite(cols).all() and np.isfinite(rows).all()):
-        raise ValueError("cols and rows hold NaN or infinite positions; every position must be finite "
+        raise RsgeoError("cols and rows hold NaN or infinite positions; every position must be "
+                         "finite "
                          "(mark points you do not want with a position outside the image instead)")
     return cols, rows
 
@@ -333,45 +344,6 @@ _NO_MASK_TYPES = ("uint8", "int16", "uint16", "float32")
 # Float types Numba cannot compute in are computed in this type, then cast back.
 _COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
                 np.dtype(np.longdouble): np.dtype(np.float64)}
-
-
-def check_num_threads(num_threads):
-    """Return ``num_threads`` as an int from 1 to Numba's thread count, else raise ValueError.
-
-    Parameters
-    ----------
-    num_threads : int
-        Threads to share a kernel's rows; a whole-valued float is accepted.
-
-    Returns
-    -------
-    int
-        ``num_threads`` as an int.
-
-    Raises
-    ------
-    ValueError
-        If ``num_threads`` is not a whole number from 1 to
-        ``numba.config.NUMBA_NUM_THREADS``.
-
-    Examples
-    --------
-    >>> check_num_threads(1)
-    1
-    >>> check_num_threads(0)  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    ValueError: num_threads must be a whole number from 1 to ...
-    """
-    most = numba.config.NUMBA_NUM_THREADS
-    try:
-        ok = float(num_threads).is_integer() and 1 <= num_threads <= most
-    except (TypeError, ValueError):
-        ok = False
-    if not ok:
-        raise ValueError(f"num_threads must be a whole number from 1 to {most} (the threads "
-                         f"Numba may use here, NUMBA_NUM_THREADS), got {num_threads!r}")
-    return int(num_threads)
 
 
 def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, row_length,
@@ -436,99 +408,6 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
     finally:
         numba.set_num_threads(previous)
     return (out if work == dtype else out.astype(dtype)), inside
-
-
-def check_scale(scale):
-    """Return ``scale`` as two positive floats (xscale, yscale), else raise ValueError.
-
-    Parameters
-    ----------
-    scale : float or (float, float)
-        GDAL's XSCALE and YSCALE: output pixels per source pixel along the
-        rows and the columns (below 1 when downsampling). One number is used
-        for both.
-
-    Returns
-    -------
-    (float, float)
-
-    Raises
-    ------
-    ValueError
-        If ``scale`` is not one or two finite numbers above zero.
-
-    Examples
-    --------
-    >>> check_scale(0.125)
-    (0.125, 0.125)
-    >>> check_scale((0.5, 0))
-    Traceback (most recent call last):
-    ...
-    ValueError: scale must be one or two finite numbers above 0 (output pixels per source pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), got (0.5, 0)
-    """
-    return _positive_pair(scale, "scale", "output pixels per source pixel, xscale and yscale, "
-                          "e.g. 0.125 for 2.5 m taken to 20 m")
-
-
-def _positive_pair(value, name, meaning):
-    """``value`` (one number for both, or two) as two finite floats above 0, else ValueError
-    naming ``name`` and saying what it means."""
-    message = (f"{name} must be one or two finite numbers above 0 ({meaning}), "
-               f"got {value!r}")
-    try:
-        values = np.asarray(value, dtype=np.float64).ravel()
-    except (TypeError, ValueError):
-        raise ValueError(message) from None
-    if values.size == 1:
-        values = np.repeat(values, 2)
-    if values.size != 2 or not (np.isfinite(values).all() and (values > 0).all()):
-        raise ValueError(message)
-    return float(values[0]), float(values[1])
-
-
-def check_nodata(nodata, dtype):
-    """Return ``nodata`` if it is representable in ``dtype``, else raise ValueError.
-
-    Parameters
-    ----------
-    nodata : int or float
-        The value for positions outside the image.
-    dtype : numpy dtype or str
-        The image's dtype.
-
-    Returns
-    -------
-    int or float
-        ``nodata`` as an int for an integer dtype, unchanged otherwise.
-
-    Raises
-    ------
-    ValueError
-        If ``dtype`` is an integer type and ``nodata`` is not a finite whole
-        number inside its range, or ``dtype`` is float32 and ``nodata`` is
-        finite but beyond float32's largest value.
-
-    Examples
-    --------
-    >>> check_nodata(255.0, np.uint8)
-    255
-    >>> check_nodata(-1, np.uint8)
-    Traceback (most recent call last):
-    ...
-    ValueError: nodata=-1 does not fit dtype uint8 (needs an integer in [0, 255])
-    """
-    if nodata is None:
-        return None
-    dtype = np.dtype(dtype)
-    if dtype.kind in "ui":
-        info = np.iinfo(dtype)
-        if not (np.isfinite(nodata) and float(nodata).is_integer() and info.min <= nodata <= info.max):
-            raise ValueError(f"nodata={nodata!r} does not fit dtype {dtype} "
-                             f"(needs an integer in [{info.min}, {info.max}])")
-        return int(nodata)
-    if dtype == np.float32 and np.isfinite(nodata) and abs(nodata) > np.finfo(np.float32).max:
-        raise ValueError(f"nodata={nodata!r} does not fit dtype float32")
-    return nodata
 
 
 # -- the kernels: one loop over output pixels per method ----------------------
@@ -1065,49 +944,6 @@ def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
     return landed.sum()
 
 
-def check_bands_first(image, name="image"):
-    """Raise ValueError if a 3-D image looks bands-last (rows, cols, 3 or 4).
-
-    rsgeo, like rasterio and GDAL, stores several bands first: (bands, rows,
-    cols). An RGB array from matplotlib, Pillow or OpenCV is (rows, cols, 3);
-    read bands first, it would be 351 "bands" of 369 x 3 pixels, and a warp or
-    a GeoTIFF made from it is silently wrong.
-
-    Parameters
-    ----------
-    image : ndarray
-        The image to check.
-    name : str
-        Its name in the error message.
-
-    Returns
-    -------
-    ndarray
-        ``image`` unchanged.
-
-    Raises
-    ------
-    ValueError
-        If ``image`` is 3-D, its last axis has 3 or 4 entries and its first
-        two axes are both more than four times longer.
-
-    Examples
-    --------
-    >>> check_bands_first(np.zeros((3, 40, 50))).shape
-    (3, 40, 50)
-    >>> check_bands_first(np.zeros((40, 50, 3)))  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    ...
-    ValueError: image has shape (40, 50, 3), which looks like bands last ...
-    """
-    shape = np.shape(image)
-    if len(shape) == 3 and shape[2] in (3, 4) and min(shape[0], shape[1]) > 4 * shape[2]:
-        raise ValueError(f"{name} has shape {tuple(shape)}, which looks like bands last "
-                         "(rows, cols, bands); rsgeo needs bands first (bands, rows, cols): "
-                         f"pass np.moveaxis({name}, -1, 0)")
-    return image
-
-
 def grid_positions(shape, transform=None, first_row=0):
     """Map coordinates of the centres of an output grid's cells.
 
@@ -1166,7 +1002,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         Source (distorted) image, 2-D or 3-D bands first.
     mapping : callable or affine.Affine
         ``mapping(points)`` with points an (n, 2) array of map (x, y) returns an
-        (n, 2) array of source (col, row) - a :class:`rsgeo.gcp.PolynomialModel`
+        (n, 2) array of source (col, row) - a :class:`rsgeo.transforms.PolynomialModel`
         fitted from map to image, or any function; or an ``affine.Affine``
         from map (x, y) to source (col, row), such as ``~source_transform``.
     shape : (rows, cols)
@@ -1223,13 +1059,13 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     >>> warp(image, shift, (4, 4))[0]
     array([1, 2, 3, 0], dtype=uint8)
     """
-    image = check_bands_first(as_image(image))
+    image = as_bands_first(as_image(image))
     check_choice(method, "method", WARP_METHODS)
-    nodata = check_nodata(nodata, image.dtype)
-    num_threads = check_num_threads(num_threads)
+    nodata = as_nodata(nodata, image.dtype)
+    num_threads = as_num_threads(num_threads)
     out_rows, out_cols = as_shape(shape)
     to_map = transform if transform is not None else affine.Affine.identity()
-    scale = (check_scale(scale) if scale is not None
+    scale = (as_scale(scale) if scale is not None
              else grid_scale(mapping, (out_rows, out_cols), to_map, image.shape[-2:]))
     height, width = image.shape[-2:]
     bands = image.shape[0] if image.ndim == 3 else 1
@@ -1259,7 +1095,8 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
                 x, y = grid_positions((stop - start, out_cols), to_map, first_row=start)
             source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
             if source.shape != (x.size, 2):
-                raise ValueError(f"mapping must return an (n, 2) array of (col, row), got shape {source.shape}")
+                raise ModelError(f"mapping must return an (n, 2) array of (col, row), got shape "
+                                 f"{source.shape}")
             source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
             strip, inside = _resample(image, method, nodata, num_threads, source_cols,
                                       source_rows, _NO_AFFINE, (stop - start) * out_cols,
@@ -1270,7 +1107,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
                               source_rows.min(), source_rows.max()))
             landed += inside
     if not landed:
-        raise ValueError(_nothing_lands_message(mapping, spans, width, height))
+        raise GridError(_nothing_lands_message(mapping, spans, width, height))
     return out if image.ndim == 3 else out[0]
 
 
@@ -1285,7 +1122,7 @@ def _nothing_lands_message(mapping, spans, width, height):
                "e.g. ~raster.transform")
     else:
         fix = ("fit the model from map to image, e.g. "
-               "gcp.fit_polynomial(map_xy, image_xy, order), not image → map; "
+               "transforms.fit_polynomial(map_xy, image_xy, order), not image → map; "
                "for a raster's geotransform pass ~raster.transform")
     return ("no output cell lands inside the source image: is your mapping map → image "
             f"(u = f(x, y))? {fix}; also check that the output grid (shape, transform) "
@@ -1344,7 +1181,7 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
     else:
         source = np.asarray(mapping(np.column_stack([x, y])), dtype=np.float64)
         if source.shape != (x.size, 2):
-            raise ValueError("mapping must return an (n, 2) array of (col, row), got shape "
+            raise ModelError("mapping must return an (n, 2) array of (col, row), got shape "
                              f"{source.shape}")
         source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
     spans = [source_cols.max() - source_cols.min(), source_rows.max() - source_rows.min()]
@@ -1368,32 +1205,6 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
                 scale = 1.0 / whole
         scales.append(float(scale))
     return scales[0], scales[1]
-
-
-def check_resolution(resolution):
-    """Return a pixel size as two positive floats (xres, yres), else raise ValueError.
-
-    Parameters
-    ----------
-    resolution : float or (float, float)
-        Output pixel size in map units (gdalwarp's ``-tr``); one number for both.
-
-    Returns
-    -------
-    (float, float)
-
-    Raises
-    ------
-    ValueError
-        If ``resolution`` is not one or two finite numbers above 0.
-
-    Examples
-    --------
-    >>> check_resolution(20)
-    (20.0, 20.0)
-    """
-    return _positive_pair(resolution, "resolution", "the output pixel size in map units, xres "
-                          "and yres, e.g. 20 for 20 m pixels")
 
 
 def suggested_grid(src_shape, mapping, resolution=None, tap=False):
@@ -1454,10 +1265,10 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     """
     height, width = as_shape(src_shape, "src_shape")
     if resolution is not None:
-        resolution = check_resolution(resolution)
+        resolution = as_resolution(resolution)
     elif tap:
-        raise ValueError("tap=True needs a resolution: target-aligned pixels are aligned on "
-                         "multiples of the pixel size (gdalwarp: -tap needs -tr)")
+        raise GridError("tap=True needs a resolution: target-aligned pixels are aligned on "
+                        "multiples of the pixel size (gdalwarp: -tap needs -tr)")
     steps = min(max(int(min(width, height) / 50 + 0.5), 20), 100)
     ratio = np.array([i / steps for i in range(steps)] + [1.0])
     # top, bottom, left, right: the last point is the bottom-right corner
@@ -1472,7 +1283,7 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     else:
         points = np.asarray(mapping(np.column_stack([cols, rows])), dtype=np.float64)
         if points.shape != (cols.size, 2):
-            raise ValueError("mapping must return an (n, 2) array of map (x, y), got shape "
+            raise ModelError("mapping must return an (n, 2) array of map (x, y), got shape "
                              f"{points.shape}")
         x, y = _check_positions(points[:, 0], points[:, 1])
     min_x, max_x, min_y, max_y = x.min(), x.max(), y.min(), y.max()
@@ -1482,7 +1293,7 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     size = np.sqrt(delta_x * delta_x + delta_y * delta_y) / np.sqrt(
         float(width) * width + float(height) * height)
     if not (size > 0 and max_x > min_x and max_y > min_y):
-        raise ValueError("mapping takes the source onto a point or a line; it must go from "
+        raise ModelError("mapping takes the source onto a point or a line; it must go from "
                          "source pixel (col, row) to map (x, y), e.g. raster.transform")
     n_cols = int((max_x - min_x) / size + 0.5)
     n_rows = int((max_y - min_y) / size + 0.5)

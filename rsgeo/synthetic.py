@@ -40,7 +40,7 @@ class ContrastPair:
 
 
 def contrast_pair(gain=0.885, offset=27.107, size=100, noise=45.0, shift=(0.7, 0.5), seed=0):
-    """A pair like the regression paper's (chapter 5): the same 100 × 100 ground, another contrast, noise, a slight shift.
+    """A pair like the regression paper's: one 100 × 100 ground, another contrast, noise, a shift.
 
     The ground is a crop of the real CBERS scene ``cbers_b2_A`` stretched to
     a wide range of DNs; X is it plus noise; Y is gain·ground + offset, resampled
@@ -95,7 +95,8 @@ def contrast_pair(gain=0.885, offset=27.107, size=100, noise=45.0, shift=(0.7, 0
     rows, cols = (np.mgrid[0:size, 0:size] + 0.5) / 4 + 2
     x_true = interpolate(ground, cols, rows, "cubic")
     y_true = interpolate(ground, cols + shift[0] / 4, rows + shift[1] / 4, "cubic")
-    x_image = np.clip(np.round(x_true + rng.normal(0, noise, x_true.shape)), 0, 255).astype(np.uint8)
+    noisy = np.round(x_true + rng.normal(0, noise, x_true.shape))
+    x_image = np.clip(noisy, 0, 255).astype(np.uint8)
     y_values = gain * y_true + offset + rng.normal(0, noise * gain, y_true.shape)
     y_image = np.clip(np.round(y_values), 0, 255).astype(np.uint8)
     return ContrastPair(x_image, y_image, gain, offset, noise, tuple(shift))
@@ -195,15 +196,18 @@ def distorted_pair(n_gcps=16, gcp_error=0.4, blunder_size=9.0, shape=(360, 360),
     image = interpolate(reference.array, ref_cols, ref_rows, "cubic")
 
     side = int(np.ceil(np.sqrt(n_gcps)))
-    grid = (np.stack(np.meshgrid(np.arange(side), np.arange(side)), axis=-1).reshape(-1, 2)[:n_gcps] + 0.5)
+    cells = np.stack(np.meshgrid(np.arange(side), np.arange(side)), axis=-1).reshape(-1, 2)
+    grid = cells[:n_gcps] + 0.5
     image_xy = grid / side * np.array([shape[1], shape[0]])
-    image_xy = image_xy + rng.uniform(-0.3, 0.3, image_xy.shape) * np.array([shape[1], shape[0]]) / side
+    image_xy = (image_xy + rng.uniform(-0.3, 0.3, image_xy.shape)
+                * np.array([shape[1], shape[0]]) / side)
     gcp_map = image_to_map(image_xy)
     errors = rng.normal(0, gcp_error, image_xy.shape)
     blunder = int(rng.integers(0, n_gcps))
     direction = rng.uniform(0, 2 * np.pi)
     errors[blunder] += blunder_size * np.array([np.cos(direction), np.sin(direction)])
-    gcps = GCPSet(gcp_map, image_xy + errors, crs=reference.crs.to_wkt() if reference.crs else None,
+    gcps = GCPSet(gcp_map, image_xy + errors,
+                  crs=reference.crs.to_wkt() if reference.crs else None,
                   ids=[f"P{i + 1:02d}" for i in range(n_gcps)])
     return DistortedPair(reference, image, image_to_map, gcps, errors, blunder)
 
@@ -237,7 +241,7 @@ class Landscape:
 
 def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, rotation_deg=4.0,
                        shift=(170.0, -110.0), size_m=8000.0, seed=0):
-    """A synthetic landscape of crop fields and stable forest remnants, at two dates and resolutions.
+    """A synthetic landscape of fields and stable forest remnants, at two dates and resolutions.
 
     Fields are Voronoi parcels whose vegetation signal is redrawn for each
     date (crops grow and are harvested); forest remnants are irregular blobs
@@ -313,7 +317,8 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
         signal = np.where(forest > 0, 0.82, field_signal) + texture
         return np.clip(signal * 255, 0, 255)
 
-    date1, date2 = date_image(np.random.default_rng(seed + 1)), date_image(np.random.default_rng(seed + 2))
+    date1 = date_image(np.random.default_rng(seed + 1))
+    date2 = date_image(np.random.default_rng(seed + 2))
     fine_transform = affine.Affine(fine, 0, 0, 0, -fine, size_m)
 
     n_ref = int(size_m / reference_pixel)
@@ -326,7 +331,7 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
                                             0, -adjustment_pixel, n_adj * adjustment_pixel / 2))
 
     def fine_positions(transform, count):
-        """(col, row) on the fine scene of the centres of a count × count grid."""
+        # (col, row) on the fine scene of the centres of a count × count grid
         r, c = np.mgrid[0:count, 0:count] + 0.5
         return ~fine_transform @ (transform @ (c, r))
 
@@ -345,8 +350,10 @@ def two_date_landscape(n_forest=8, reference_pixel=20.0, adjustment_pixel=30.0, 
     adjustment = np.round(sample(date2, fine_positions(adjustment_transform, n_adj),
                                  adjustment_pixel)).astype(np.uint8)
     forest_truth = interpolate(forest, *on_reference, "nearest")
-    centroids = np.array([[x[forest == k].mean(), y[forest == k].mean()] for k in range(1, n_forest + 1)])
-    return Landscape(reference, adjustment, reference_transform, adjustment_transform, forest_truth, centroids)
+    centroids = np.array([[x[forest == k].mean(), y[forest == k].mean()]
+                          for k in range(1, n_forest + 1)])
+    return Landscape(reference, adjustment, reference_transform, adjustment_transform,
+                     forest_truth, centroids)
 
 
 def synthetic_meshes(n=8, centroid_noise=1.0, area_noise=0.10, seed=0, shrink=None):

@@ -50,9 +50,10 @@ that collides with the destination nodata inconsistently across its warp paths
 import numpy as np
 from numba import njit
 
-from ._checks import as_image, as_shape, check_choice
-from .gcp import measure_shifts
-from .resample import METHODS, check_bands_first, interpolate
+from ._checks import as_bands_first, as_image, as_shape, check_choice
+from .errors import CRSError, DataError, GCPError, GridError, ImageError, ModelError, RsgeoError
+from .resample import METHODS, interpolate
+from .tiepoints import measure_shifts
 
 __all__ = [
     "relief_displacement", "relief_displacement_photo", "height_error_budget",
@@ -101,7 +102,7 @@ def relief_displacement(height_m, view_zenith_deg):
     height = _finite(height_m, "height_m")
     angle = _finite(view_zenith_deg, "view_zenith_deg")
     if np.any((angle < 0) | (angle >= 90)):
-        raise ValueError(f"view_zenith_deg must be in [0, 90) degrees (0 = nadir), got "
+        raise RsgeoError(f"view_zenith_deg must be in [0, 90) degrees (0 = nadir), got "
                          f"{_few(angle[(angle < 0) | (angle >= 90)])}")
     result = height * np.tan(np.radians(angle))
     return float(result) if result.ndim == 0 else result
@@ -140,10 +141,10 @@ def relief_displacement_photo(height_m, radial_distance_mm, flying_height_m):
     radius = _finite(radial_distance_mm, "radial_distance_mm")
     flying = float(_finite(flying_height_m, "flying_height_m"))
     if np.any(radius < 0):
-        raise ValueError("radial_distance_mm must be >= 0 (a distance from the principal point), "
+        raise RsgeoError("radial_distance_mm must be >= 0 (a distance from the principal point), "
                          f"got {_few(radius[radius < 0])}")
     if np.any(height >= flying):
-        raise ValueError(f"flying_height_m ({flying:g} m) must be above every height; got heights "
+        raise RsgeoError(f"flying_height_m ({flying:g} m) must be above every height; got heights "
                          f"up to {float(np.max(height)):g} m")
     result = radius * height / flying
     return float(result) if result.ndim == 0 else result
@@ -177,9 +178,9 @@ def height_error_budget(position_error_m, view_zenith_deg):
     budget = float(_finite(position_error_m, "position_error_m"))
     angle = float(_finite(view_zenith_deg, "view_zenith_deg"))
     if budget <= 0:
-        raise ValueError(f"position_error_m must be > 0, got {budget:g}")
+        raise RsgeoError(f"position_error_m must be > 0, got {budget:g}")
     if not 0 < angle < 90:
-        raise ValueError(f"view_zenith_deg must be in (0, 90) degrees (at nadir any height error "
+        raise RsgeoError(f"view_zenith_deg must be in (0, 90) degrees (at nadir any height error "
                          f"is allowed), got {angle:g}")
     return float(budget / np.tan(np.radians(angle)))
 
@@ -188,9 +189,9 @@ def _finite(value, name):
     try:
         array = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be numbers, got {value!r}") from None
+        raise RsgeoError(f"{name} must be numbers, got {value!r}") from None
     if not np.isfinite(array).all():
-        raise ValueError(f"{name} holds NaN or infinite values; every value must be finite")
+        raise RsgeoError(f"{name} holds NaN or infinite values; every value must be finite")
     return array
 
 
@@ -231,14 +232,23 @@ class RPCModel:
     with 0 at the centre of the first pixel; :meth:`project` returns GDAL's
     (col, row) = (sample + 0.5, line + 0.5).
 
-    Attributes
+    Parameters
     ----------
     offsets, scales : dict
         ``{"LINE": ..., "SAMP": ..., "LAT": ..., "LONG": ..., "HEIGHT": ...}``.
-    line_num, line_den, samp_num, samp_den : ndarray, shape (20,)
+    line_num, line_den, samp_num, samp_den : array_like, shape (20,)
         Coefficients in GDAL's term order (``RPC_TERMS``).
-    extra : dict
+    extra : dict, optional
         MIN_LONG, MAX_LAT, ERR_BIAS ... when given.
+
+    Attributes
+    ----------
+    offsets, scales : dict
+        As given, values as floats.
+    line_num, line_den, samp_num, samp_den : ndarray, shape (20,)
+        The coefficients, float64.
+    extra : dict
+        As given (empty when None).
     """
 
     def __init__(self, offsets, scales, line_num, line_den, samp_num, samp_den, extra=None):
@@ -283,20 +293,20 @@ class RPCModel:
         try:
             upper = {str(key).upper(): value for key, value in dict(mapping).items()}
         except (TypeError, ValueError):
-            raise ValueError(f"mapping must be a dict of RPC metadata (LINE_OFF, SAMP_OFF, ..., "
-                             f"LINE_NUM_COEFF, ...), got {type(mapping).__name__}") from None
+            raise TypeError(f"mapping must be a dict of RPC metadata (LINE_OFF, SAMP_OFF, ..., "
+                            f"LINE_NUM_COEFF, ...), got {type(mapping).__name__}") from None
         missing = [key for key in _SCALARS + _COEFFS if key not in upper]
         if missing:
-            raise ValueError(f"the RPC mapping lacks {', '.join(missing)}; an RPC00B model needs "
-                             f"{', '.join(_SCALARS + _COEFFS)}")
+            raise DataError(f"the RPC mapping lacks {', '.join(missing)}; an RPC00B model needs "
+                            f"{', '.join(_SCALARS + _COEFFS)}")
         numbers = {}
         for key in _SCALARS + tuple(k for k in _OPTIONAL if k in upper):
             try:
                 numbers[key] = float(upper[key])
             except (TypeError, ValueError):
-                raise ValueError(f"RPC entry {key} must be a number, got {upper[key]!r}") from None
+                raise DataError(f"RPC entry {key} must be a number, got {upper[key]!r}") from None
             if not np.isfinite(numbers[key]):
-                raise ValueError(f"RPC entry {key} must be finite, got {upper[key]!r}")
+                raise DataError(f"RPC entry {key} must be finite, got {upper[key]!r}")
         coeffs = []
         for key in _COEFFS:
             value = upper[key]
@@ -305,13 +315,14 @@ class RPCModel:
             try:
                 array = np.asarray(value, dtype=np.float64).ravel()
             except (TypeError, ValueError):
-                raise ValueError(f"RPC entry {key} must be 20 numbers, got {value!r}") from None
+                raise DataError(f"RPC entry {key} must be 20 numbers, got {value!r}") from None
             if array.size != 20 or not np.isfinite(array).all():
-                raise ValueError(f"RPC entry {key} must be 20 finite numbers, got {array.size}")
+                raise DataError(f"RPC entry {key} must be 20 finite numbers, got {array.size}")
             coeffs.append(array)
         for kind in ("LINE", "SAMP", "LAT", "LONG", "HEIGHT"):
             if numbers[f"{kind}_SCALE"] == 0:
-                raise ValueError(f"RPC entry {kind}_SCALE is 0; scales divide, so they must not be 0")
+                raise DataError(f"RPC entry {kind}_SCALE is 0; scales divide, "
+                                "so they must not be 0")
         offsets = {k: numbers[f"{k}_OFF"] for k in ("LINE", "SAMP", "LAT", "LONG", "HEIGHT")}
         scales = {k: numbers[f"{k}_SCALE"] for k in ("LINE", "SAMP", "LAT", "LONG", "HEIGHT")}
         extra = {k: numbers[k] for k in _OPTIONAL if k in numbers}
@@ -371,7 +382,8 @@ class RPCModel:
     def __repr__(self):
         o = self.offsets
         return (f"RPCModel(centre lon {o['LONG']:.5f}°, lat {o['LAT']:.5f}°, height "
-                f"{o['HEIGHT']:g} m; image centre col {o['SAMP'] + 0.5:g}, row {o['LINE'] + 0.5:g})")
+                f"{o['HEIGHT']:g} m; image centre col {o['SAMP'] + 0.5:g}, "
+                f"row {o['LINE'] + 0.5:g})")
 
     def normalise(self, lon, lat, height):
         """Normalised (L, P, H) as GDAL computes them (with its ±270° dateline fold).
@@ -476,12 +488,12 @@ class RPCModel:
         height = _finite(height, "height")
         col, row, height = np.broadcast_arrays(col, row, height)
         if not tolerance > 0:
-            raise ValueError(f"tolerance must be > 0 pixels, got {tolerance!r}")
+            raise RsgeoError(f"tolerance must be > 0 pixels, got {tolerance!r}")
         lon = np.full(col.shape, self.offsets["LONG"])
         lat = np.full(col.shape, self.offsets["LAT"])
         step_lon = 1e-7 * self.scales["LONG"]
         step_lat = 1e-7 * self.scales["LAT"]
-        for _ in range(int(max_iterations)):
+        for _iteration in range(int(max_iterations)):
             c0, r0 = self.project(lon, lat, height)
             dc, dr = c0 - col, r0 - row
             if np.all(np.maximum(np.abs(dc), np.abs(dr)) < tolerance):
@@ -497,7 +509,7 @@ class RPCModel:
         bad = np.maximum(np.abs(c0 - col), np.abs(r0 - row)) >= tolerance
         if bad.any():
             where = np.flatnonzero(bad.ravel())[:5].tolist()
-            raise ValueError(f"localize did not converge to {tolerance:g} px for {bad.sum()} "
+            raise ModelError(f"localize did not converge to {tolerance:g} px for {bad.sum()} "
                              f"point(s) (flat indices {where}); are they inside the image the "
                              "RPC describes?")
         return lon, lat
@@ -535,12 +547,12 @@ def _lon_lat_height(lon, lat, height):
     lat = _finite(lat, "lat")
     height = _finite(height, "height")
     if np.any(np.abs(lat) > 90):
-        raise ValueError(f"lat must be in [-90, 90] degrees, got {_few(lat[np.abs(lat) > 90])} "
-                         "(longitude and latitude swapped?)")
+        raise CRSError(f"lat must be in [-90, 90] degrees, got {_few(lat[np.abs(lat) > 90])} "
+                       "(longitude and latitude swapped?)")
     if np.any((lon < -180) | (lon > 360)):
-        raise ValueError(f"lon must be in [-180, 360] degrees, got "
-                         f"{_few(lon[(lon < -180) | (lon > 360)])} (projected metres given "
-                         "instead of degrees?)")
+        raise CRSError(f"lon must be in [-180, 360] degrees, got "
+                       f"{_few(lon[(lon < -180) | (lon > 360)])} (projected metres given "
+                       "instead of degrees?)")
     return np.broadcast_arrays(lon, lat, height)
 
 
@@ -597,14 +609,14 @@ def fit_rpc(lon, lat, height, col, row, regularization=1e-10):
     col = np.ravel(_finite(col, "col"))
     row = np.ravel(_finite(row, "row"))
     if not (lon.size == lat.size == height.size == col.size == row.size):
-        raise ValueError(f"lon, lat, height, col and row must have one size, got {lon.size}, "
-                         f"{lat.size}, {height.size}, {col.size}, {row.size}")
+        raise GCPError(f"lon, lat, height, col and row must have one size, got {lon.size}, "
+                       f"{lat.size}, {height.size}, {col.size}, {row.size}")
     if lon.size < 39:
-        raise ValueError(f"fit_rpc needs at least 39 points (39 unknowns per coordinate), "
-                         f"got {lon.size}")
+        raise GCPError(f"fit_rpc needs at least 39 points (39 unknowns per coordinate), "
+                       f"got {lon.size}")
     if np.ptp(height) == 0:
-        raise ValueError("the heights do not vary; fit the RPC to a 3-D grid (several height "
-                         "layers), as the height terms need")
+        raise GCPError("the heights do not vary; fit the RPC to a 3-D grid (several height "
+                       "layers), as the height terms need")
 
     def middle_half(values, least=1e-9):
         low, high = float(values.min()), float(values.max())
@@ -623,7 +635,7 @@ def fit_rpc(lon, lat, height, col, row, regularization=1e-10):
         x = (values - offsets[kind]) / scales[kind]
         design = np.hstack([terms, -x[:, None] * terms[:, 1:]])
         weights = np.ones_like(x)
-        for _ in range(2):
+        for _iteration in range(2):
             a = design * weights[:, None]
             normal = a.T @ a
             normal += regularization * np.trace(normal) / normal.shape[0] * np.eye(normal.shape[0])
@@ -646,7 +658,8 @@ def _gdal_inverse(gt):
     det = gt[1] * gt[5] - gt[2] * gt[4]
     magnitude = max(abs(gt[1]), abs(gt[2]), abs(gt[4]), abs(gt[5]))
     if abs(det) <= 1e-10 * magnitude * magnitude:
-        raise ValueError(f"the geotransform {tuple(gt)} cannot be inverted (its pixels have no area)")
+        raise GridError(f"the geotransform {tuple(gt)} cannot be inverted "
+                        "(its pixels have no area)")
     inv = 1.0 / det
     return np.array([(gt[2] * gt[3] - gt[0] * gt[5]) * inv, gt[5] * inv, -gt[2] * inv,
                      (-gt[1] * gt[3] + gt[0] * gt[4]) * inv, -gt[4] * inv, gt[1] * inv])
@@ -659,7 +672,8 @@ def _as_gdal(transform, name):
     except (TypeError, ValueError):
         gt = None
     if gt is None or gt.size != 6 or not np.isfinite(gt).all():
-        raise ValueError(f"{name} must be an affine.Affine (pixel corner -> map), got {transform!r}")
+        raise GridError(f"{name} must be an affine.Affine (pixel corner -> map), got "
+                        f"{transform!r}")
     return gt
 
 
@@ -733,12 +747,12 @@ def dem_height(dem, dem_transform, x, y, dem_nodata=None):
     """
     dem = np.asarray(dem, dtype=np.float64)
     if dem.ndim != 2 or min(dem.shape) < 1:
-        raise ValueError(f"dem must be a 2-D (rows, cols) array of heights, got shape {dem.shape}")
+        raise ImageError(f"dem must be a 2-D (rows, cols) array of heights, got shape {dem.shape}")
     inverse = _gdal_inverse(_as_gdal(dem_transform, "dem_transform"))
     x = np.asarray(x, dtype=np.float64)
     y = np.asarray(y, dtype=np.float64)
     if x.shape != y.shape:
-        raise ValueError(f"x and y must have the same shape, got {x.shape} and {y.shape}")
+        raise RsgeoError(f"x and y must have the same shape, got {x.shape} and {y.shape}")
     holes = ~np.isfinite(dem)
     if dem_nodata is not None:
         holes |= dem == dem_nodata
@@ -749,14 +763,14 @@ def dem_height(dem, dem_transform, x, y, dem_nodata=None):
     if outside:
         first = int(np.flatnonzero(np.isnan(out) & _outside_mask(work.shape, inverse, flat_x,
                                                                      flat_y))[0])
-        raise ValueError(f"the DEM does not cover {outside} of {flat_x.size} points (first at "
-                         f"x={flat_x[first]:.6f}, y={flat_y[first]:.6f}; DEM bounds "
-                         f"{_bounds(dem.shape, dem_transform)}); give a DEM that covers the "
-                         "output grid")
+        raise GridError(f"the DEM does not cover {outside} of {flat_x.size} points (first at "
+                        f"x={flat_x[first]:.6f}, y={flat_y[first]:.6f}; DEM bounds "
+                        f"{_bounds(dem.shape, dem_transform)}); give a DEM that covers the "
+                        "output grid")
     if np.isnan(out).any():
         first = int(np.flatnonzero(np.isnan(out))[0])
         rows, cols = np.nonzero(holes)
-        raise ValueError(f"the DEM has nodata holes ({holes.sum()} cells, e.g. row {rows[0]}, "
+        raise ImageError(f"the DEM has nodata holes ({holes.sum()} cells, e.g. row {rows[0]}, "
                          f"col {cols[0]}) under {int(np.isnan(out).sum())} points (first at "
                          f"x={flat_x[first]:.6f}, y={flat_y[first]:.6f}); fill them first")
     return out.reshape(x.shape)
@@ -865,7 +879,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     >>> ortho.shape
     (20, 20)
     """
-    image = check_bands_first(as_image(image))
+    image = as_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
     rpc = rpc if isinstance(rpc, RPCModel) else RPCModel.from_dict(rpc)
     shape = as_shape(dst_shape, "dst_shape")
@@ -878,9 +892,9 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     cols, rows = rpc.project(lon, lat, heights)
     height, width = image.shape[-2:]
     if not np.any((cols >= 0) & (cols < width) & (rows >= 0) & (rows < height)):
-        raise ValueError(f"no output cell sees the image ({height} x {width} px): the grid is "
-                         "elsewhere; check dst_transform and dst_crs against the RPC's area "
-                         f"(lon {rpc.offsets['LONG']:.4f}, lat {rpc.offsets['LAT']:.4f})")
+        raise GridError(f"no output cell sees the image ({height} x {width} px): the grid is "
+                        "elsewhere; check dst_transform and dst_crs against the RPC's area "
+                        f"(lon {rpc.offsets['LONG']:.4f}, lat {rpc.offsets['LAT']:.4f})")
     return interpolate(image, cols, rows, method, nodata=nodata, num_threads=num_threads)
 
 
@@ -973,7 +987,7 @@ class PushbroomSensor:
         """
         x, y, h = (np.asarray(a, dtype=float) for a in (x, y, h))
         if np.any(h >= self.altitude):
-            raise ValueError("a ground point is at or above the platform's altitude")
+            raise ModelError("a ground point is at or above the platform's altitude")
         angle = np.arctan((x - self.x_nadir) / (self.altitude - h))
         col = (angle - self.centre) / self.ifov + self.columns / 2
         row = (self.y0 - y) / self.line_step
@@ -1020,7 +1034,7 @@ class PushbroomSensor:
             If a line of sight leaves the DEM.
         """
         h = np.zeros(np.broadcast(np.asarray(col), np.asarray(row)).shape)
-        for _ in range(int(iterations)):
+        for _iteration in range(int(iterations)):
             x, y = self.ground(col, row, h)
             h = dem_height(dem, dem_transform, x, y)
         x, y = self.ground(col, row, h)
@@ -1068,7 +1082,7 @@ class PushbroomSensor:
         rows, cols = as_shape(shape)
         ground = as_image(ground, "ground")
         if ground.ndim != 2:
-            raise ValueError(f"ground must be a 2-D image, got shape {ground.shape}")
+            raise ImageError(f"ground must be a 2-D image, got shape {ground.shape}")
         r, c = np.mgrid[0:rows, 0:cols] + 0.5
         x, y, h = self.ground_on_dem(c, r, dem, dem_transform)
         gt = _gdal_inverse(_as_gdal(ground_transform, "ground_transform"))
@@ -1112,7 +1126,7 @@ def fit_rpc_to_sensor(sensor, crs, bounds, heights, n=15):
     """
     low, high = (float(v) for v in heights)
     if not high > low:
-        raise ValueError(f"heights must be (low, high) with high > low, got {heights!r}")
+        raise RsgeoError(f"heights must be (low, high) with high > low, got {heights!r}")
     west, south, east, north = (float(v) for v in bounds)
     x, y, h = np.meshgrid(np.linspace(west, east, n), np.linspace(south, north, n),
                           np.linspace(low, high, 5), indexing="ij")
@@ -1163,7 +1177,7 @@ def map_on_grid(image, transform, dst_transform, dst_shape, method="bilinear", n
     """
     image = as_image(image)
     if image.ndim != 2:
-        raise ValueError(f"image must be 2-D, got shape {image.shape}")
+        raise ImageError(f"image must be 2-D, got shape {image.shape}")
     check_choice(method, "method", METHODS)
     x, y = np.broadcast_arrays(*_grid_centres(_as_gdal(dst_transform, "dst_transform"),
                                               as_shape(dst_shape, "dst_shape")))
@@ -1179,8 +1193,9 @@ def positional_error(image, truth, step=64, window=64, nodata=0, upsample=100, t
     ``truth`` is the true ground on the same grid (:func:`map_on_grid` of
     the map a simulation was made from, or a reference orthoimage); at the
     check points of a regular grid the local shift between the two images'
-    windows is measured by correlation (:func:`rsgeo.gcp.measure_shifts`;
-    Hann-tapered by default, which smooth images need), skipping windows that touch a ``nodata`` pixel of ``image``. This measures
+    windows is measured by correlation (:func:`rsgeo.tiepoints.measure_shifts`;
+    Hann-tapered by default, which smooth images need), skipping windows that touch a ``nodata``
+    pixel of ``image``. This measures
     the image itself (its DEM, model and resampling together), not the
     model's fit at points.
 
@@ -1207,7 +1222,7 @@ def positional_error(image, truth, step=64, window=64, nodata=0, upsample=100, t
     Raises
     ------
     ValueError
-        As :func:`rsgeo.gcp.measure_shifts`, or if no window lies wholly
+        As :func:`rsgeo.tiepoints.measure_shifts`, or if no window lies wholly
         inside the image's footprint.
 
     Examples
@@ -1224,7 +1239,7 @@ def positional_error(image, truth, step=64, window=64, nodata=0, upsample=100, t
     points, shifts = measure_shifts(truth, image, step, window, upsample=upsample, taper=taper,
                                     valid=valid)
     if len(points) == 0:
-        raise ValueError("no check-point window lies wholly inside the image's footprint; "
-                         "use a smaller window or step")
+        raise GridError("no check-point window lies wholly inside the image's footprint; "
+                        "use a smaller window or step")
     return pd.DataFrame({"col": points[:, 0], "row": points[:, 1], "dcol": shifts[:, 0],
                          "drow": shifts[:, 1], "error": np.hypot(shifts[:, 0], shifts[:, 1])})

@@ -16,7 +16,7 @@ fitting, refinement and evaluation of chapters 2-4 apply unchanged:
 * :func:`feature_tiepoints` - SIFT (Lowe 2004) or ORB (Rublee et al. 2011)
   keypoints, matched by their descriptors (``skimage.feature.match_descriptors``),
   then RANSAC (Fischler and Bolles 1981; ``skimage.measure.ransac``) with any
-  model of :func:`rsgeo.gcp.fit_transform`, keeping the inliers.
+  model of :func:`rsgeo.transforms.fit_transform`, keeping the inliers.
 
 :func:`register` is the step every automatic method shares with the GA
 paper's (:func:`rsgeo.matching.register_by_regions`): tie points -> GCPSet ->
@@ -28,18 +28,245 @@ from dataclasses import dataclass
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from . import gcp, resample
+from . import accuracy, gcp, resample, transforms
 from ._checks import as_image, as_shape, check_choice, check_range
+from .errors import GCPError, GridError, ImageError, ModelError
 
-__all__ = ["DETECTORS", "ransac_model", "robust_fit", "correlation_tiepoints",
-           "feature_tiepoints", "Registration", "register", "grid_error", "coarsen",
-           "perturb_transform"]
+__all__ = [
+    "DETECTORS",
+    "Registration",
+    "coarsen",
+    "correlation_tiepoints",
+    "feature_tiepoints",
+    "grid_error",
+    "measure_shifts",
+    "offsets_against_reference",
+    "perturb_transform",
+    "ransac_model",
+    "register",
+    "robust_fit",
+]
 
 DETECTORS = ("sift", "orb")
 
 
+def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=False, valid=None,
+                   details=False):
+    """Local misregistration of ``moving`` against ``reference`` on a grid of check points.
+
+    At every check point of a regular grid, the sub-pixel shift between the
+    two images' windows is measured by phase correlation (scikit-image's
+    ``phase_cross_correlation``): an independent measure of geometric error
+    that needs no GCP.
+
+    With ``taper=True`` each window is centred on its mean and multiplied
+    by a Hann window, and plain (not phase-normalised) cross-correlation is
+    used: on smooth scenes this avoids the pull towards zero shift that the
+    windows' cut edges cause.
+
+    Parameters
+    ----------
+    reference, moving : (rows, cols) array_like
+        The two images, same shape.
+    step : int
+        Spacing of the check points, pixels.
+    window : int
+        Size of the square window compared at each point, pixels.
+    upsample : int
+        Sub-pixel precision: 1 / upsample pixel.
+    taper : bool
+        Hann-tapered cross-correlation instead of phase correlation.
+    valid : (rows, cols) array_like of bool, optional
+        False where a pixel must not be used (outside the moving image's
+        footprint, cloud, water): a window with any such pixel is skipped.
+    details : bool
+        Also return every window's reliability (what
+        :func:`rsgeo.tiepoints.correlation_tiepoints` filters on); then every
+        window of the grid is returned, a skipped one with NaN shifts.
+
+    Returns
+    -------
+    points : ndarray, shape (k, 2)
+        (col, row) of each check point.
+    shifts : ndarray, shape (k, 2)
+        (dcol, drow) to move ``moving`` onto ``reference`` at that point, pixels.
+    table : pandas.DataFrame
+        Only with ``details=True``, one row per point: ``peak`` (height of the
+        phase-correlation peak, 0-1), ``reliability`` (that peak over the rest
+        of the correlation surface, in its standard deviations), ``error``
+        (scikit-image's translation-invariant RMS error, 0-1), ``contrast``
+        (the smaller standard deviation of the two windows) and ``skipped``
+        ("" or why the window was not correlated: "constant", "invalid").
+
+    Raises
+    ------
+    ValueError
+        If the images differ in shape, are not 2-D or hold NaN, or step,
+        window or upsample is not a positive whole number, or the window is
+        larger than the images, or ``valid`` is not a mask of their shape.
+
+    References
+    ----------
+    Guizar-Sicairos, M., Thurman, S. T. and Fienup, J. R. (2008),
+    "Efficient subpixel image registration algorithms", Optics Letters 33(2).
+    """
+    from skimage.registration import phase_cross_correlation
+
+    reference = np.asarray(reference, dtype=np.float64)
+    moving = np.asarray(moving, dtype=np.float64)
+    if reference.shape != moving.shape or reference.ndim != 2:
+        raise ImageError(f"reference and moving must be 2-D images of the same shape, got "
+                         f"{reference.shape} and {moving.shape}")
+    if not (np.isfinite(reference).all() and np.isfinite(moving).all()):
+        raise ImageError("reference and moving hold NaN or infinite values; crop or fill them "
+                         "first")
+    for name, value in (("step", step), ("window", window), ("upsample", upsample)):
+        if int(value) != value or value < 1:
+            raise GridError(f"{name} must be a positive whole number of pixels, got {value!r}")
+    if window > min(reference.shape):
+        raise GridError(f"window ({window} px) is larger than the images {reference.shape}; "
+                        "use a window no larger than the smaller side")
+    if valid is not None:
+        valid = np.asarray(valid)
+        if valid.shape != reference.shape or valid.dtype != bool:
+            raise ImageError(f"valid must be a boolean mask of the images' shape "
+                             f"{reference.shape}, "
+                             f"got {valid.dtype} of shape {valid.shape}")
+    half = window // 2
+    if taper:
+        from skimage.filters import window as hann
+
+        weights = hann("hann", (2 * half, 2 * half))
+    points, shifts, rows = [], [], []
+    for row in range(half, reference.shape[0] - half + 1, step):
+        for col in range(half, reference.shape[1] - half + 1, step):
+            a = reference[row - half:row + half, col - half:col + half]
+            b = moving[row - half:row + half, col - half:col + half]
+            skipped = ("invalid" if valid is not None
+                       and not valid[row - half:row + half, col - half:col + half].all()
+                       else "constant" if a.std() == 0 or b.std() == 0 else "")
+            if skipped:
+                if details:
+                    points.append((col, row))
+                    shifts.append((np.nan, np.nan))
+                    rows.append({"peak": np.nan, "reliability": np.nan, "error": np.nan,
+                                 "contrast": min(a.std(), b.std()), "skipped": skipped})
+                continue
+            contrast = min(a.std(), b.std())
+            if taper:
+                a, b = (a - a.mean()) * weights, (b - b.mean()) * weights
+                shift, error, _ = phase_cross_correlation(a, b, upsample_factor=upsample,
+                                                          normalization=None)
+            else:
+                shift, error, _ = phase_cross_correlation(a, b, upsample_factor=upsample)
+            points.append((col, row))
+            shifts.append((shift[1], shift[0]))
+            if details:
+                rows.append({**_correlation_peak(a, b), "error": error, "contrast": contrast,
+                             "skipped": ""})
+    points = np.array(points, dtype=float).reshape(-1, 2)
+    shifts = np.array(shifts, dtype=float).reshape(-1, 2)
+    if not details:
+        return points, shifts
+    import pandas as pd
+
+    columns = ["peak", "reliability", "error", "contrast", "skipped"]
+    return points, shifts, pd.DataFrame(rows, columns=columns)
+
+
+def _correlation_peak(a, b):
+    """Height of the phase-correlation surface's peak, and its distance from the rest in standard
+    deviations (a sharp, lone peak is a reliable match; a peak among many is not)."""
+    spectrum = np.fft.fft2(a) * np.conj(np.fft.fft2(b))
+    floor = 1e-12 * np.abs(spectrum).max()
+    surface = np.abs(np.fft.ifft2(spectrum / np.maximum(np.abs(spectrum), floor)))
+    flat = surface.ravel()
+    top = int(np.argmax(flat))
+    rest = np.delete(flat, top)
+    return {"peak": float(flat[top]),
+            "reliability": float((flat[top] - rest.mean()) / (rest.std() or 1.0))}
+
+
+def offsets_against_reference(image, transform, reference, reference_transform, step=64,
+                              window=96):
+    """Where an image's content sits relative to its geotransform, measured on a finer reference.
+
+    The reference (e.g. the 2.5 m HRC) is averaged over blocks of the image's
+    pixel size (e.g. 8 × 8 for 20 m), sampled (bilinear) at the image's cell
+    centres through both geotransforms, and compared with the image window by
+    window by cross-correlation (:func:`measure_shifts` with ``taper=True``). No GCP is used: it is
+    an independent measure of how far the two files' georeferencing disagree.
+
+    Parameters
+    ----------
+    image : (rows, cols) array_like
+        One band of the coarser image.
+    transform : affine.Affine
+        Its geotransform, north-up.
+    reference : (rows, cols) array_like
+        One band of the finer reference, in the same CRS, with a spectral
+        response close to ``image``'s (a pan band against a red band, say).
+    reference_transform : affine.Affine
+        Its geotransform, north-up, with a pixel size that divides the image's.
+    step, window : int
+        Spacing and size of the correlation windows, in image pixels.
+
+    Returns
+    -------
+    points : ndarray, shape (k, 2)
+        (col, row) of each window's centre in the image.
+    offsets : ndarray, shape (k, 2)
+        (dcol, drow): where a feature is in the image minus where the image's
+        geotransform puts the reference's same feature, in image pixels (the
+        same sign as GCP image positions minus the geotransform's prediction).
+
+    Raises
+    ------
+    ValueError
+        If the images are not 2-D, the transforms are not north-up, the pixel
+        sizes are not in a whole ratio, or the images barely overlap.
+    """
+    from scipy.ndimage import map_coordinates
+
+    image = np.asarray(image, dtype=np.float64)
+    reference = np.asarray(reference, dtype=np.float64)
+    if image.ndim != 2 or reference.ndim != 2:
+        raise ImageError(f"image and reference must be single bands (2-D), got shapes "
+                         f"{image.shape} and {reference.shape}")
+    for name, t in (("transform", transform), ("reference_transform", reference_transform)):
+        accuracy._check_transform(t, name)
+        if t.b != 0 or t.d != 0 or t.a <= 0 or t.e >= 0:
+            raise GridError(f"{name} must be north-up (no rotation terms), got {t!r}")
+    ratio = transform.a / reference_transform.a
+    factor = int(round(ratio))
+    if (factor < 1 or abs(ratio - factor) > 1e-6
+            or abs(-transform.e / -reference_transform.e - factor) > 1e-6):
+        raise GridError(f"the image's pixel ({transform.a}, {-transform.e}) must be a whole "
+                        f"multiple "
+                        f"of the reference's ({reference_transform.a}, {-reference_transform.e})")
+    rows, cols = (n // factor * factor for n in reference.shape)
+    blocks = reference[:rows, :cols].reshape(rows // factor, factor, cols // factor,
+                                             factor).mean(axis=(1, 3))
+    block_transform = reference_transform @ reference_transform.scale(factor)
+    grid_rows, grid_cols = np.mgrid[0:image.shape[0], 0:image.shape[1]] + 0.5
+    x, y = transform @ (grid_cols, grid_rows)
+    block_cols, block_rows = ~block_transform @ (x, y)
+    inside = ((block_cols >= 0.5) & (block_rows >= 0.5) & (block_cols <= blocks.shape[1] - 0.5)
+              & (block_rows <= blocks.shape[0] - 0.5))
+    if not inside.any():
+        raise GridError("the image and the reference do not overlap")
+    used_rows, used_cols = np.flatnonzero(inside.any(axis=1)), np.flatnonzero(inside.any(axis=0))
+    box = np.s_[used_rows[0]:used_rows[-1] + 1, used_cols[0]:used_cols[-1] + 1]
+    if not inside[box].all() or min(inside[box].shape) < window:
+        raise GridError(f"the overlap {inside[box].shape} must be a full rectangle of at least "
+                        f"{window} × {window} image pixels")
+    sampled = map_coordinates(blocks, [block_rows[box] - 0.5, block_cols[box] - 0.5], order=1)
+    points, shifts = measure_shifts(sampled, image[box], step=step, window=window, taper=True)
+    return points + [used_cols[0], used_rows[0]], -shifts
+
+
 def ransac_model(kind="polynomial", order=1):
-    """A model class for ``skimage.measure.ransac`` that fits :func:`rsgeo.gcp.fit_transform`.
+    """A model class for ``skimage.measure.ransac`` fitting :func:`rsgeo.transforms.fit_transform`.
 
     scikit-image's RANSAC asks a class for ``from_estimate(src, dst)`` (a
     fitted model, or a false value when the sample cannot determine one) and
@@ -49,7 +276,7 @@ def ransac_model(kind="polynomial", order=1):
     Parameters
     ----------
     kind : {"linear", "helmert", "polynomial", "projective", "tps"}
-        As :func:`rsgeo.gcp.fit_transform`.
+        As :func:`rsgeo.transforms.fit_transform`.
     order : {1, 2, 3} or None
         Polynomial order (only for ``kind="polynomial"``).
 
@@ -57,7 +284,7 @@ def ransac_model(kind="polynomial", order=1):
     -------
     type
         A class with ``from_estimate`` and the attribute ``min_samples``
-        (:func:`rsgeo.gcp.min_gcps` of the kind).
+        (:func:`rsgeo.transforms.min_gcps` of the kind).
 
     Raises
     ------
@@ -74,17 +301,17 @@ def ransac_model(kind="polynomial", order=1):
     [[7.0, 7.0]]
     """
     order = None if kind != "polynomial" else order
-    needed = gcp.min_gcps(kind, order) if kind != "polynomial" else gcp.min_gcps(
-        "polynomial", order)
+    needed = transforms.min_gcps(kind, order)
 
     class RsgeoModel:
         min_samples = needed
-        residuals = gcp.GeometricModel.residuals   # the fitted models' own, named for the protocol
+        # the fitted models' own, named for the protocol
+        residuals = transforms.GeometricModel.residuals
 
         @classmethod
         def from_estimate(cls, src, dst):
             try:
-                return gcp.fit_transform(src, dst, kind, order)
+                return transforms.fit_transform(src, dst, kind, order)
             except (ValueError, np.linalg.LinAlgError):
                 return None
 
@@ -100,7 +327,7 @@ def robust_fit(src, dst, kind="polynomial", order=1, threshold=1.0, max_trials=1
     src, dst : (n, 2) array_like
         Point pairs (for GCPs: map x, y and image col, row).
     kind, order
-        As :func:`rsgeo.gcp.fit_transform`.
+        As :func:`rsgeo.transforms.fit_transform`.
     threshold : float
         Largest residual of an inlier, in dst units.
     max_trials : int
@@ -136,16 +363,16 @@ def robust_fit(src, dst, kind="polynomial", order=1, threshold=1.0, max_trials=1
     model_class = ransac_model(kind, order)
     if len(src) < model_class.min_samples:
         what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
-        raise ValueError(f"{what} needs at least {model_class.min_samples} tie points, "
-                         f"got {len(src)}")
+        raise GCPError(f"{what} needs at least {model_class.min_samples} tie points, "
+                       f"got {len(src)}")
     check_range(threshold, "threshold", 0, None, "a residual in dst units")
     model, inliers = ransac((src, dst), model_class, model_class.min_samples, threshold,
                             max_trials=int(max_trials), rng=np.random.default_rng(seed))
     if not model or inliers is None or inliers.sum() < model_class.min_samples:
-        raise ValueError(f"RANSAC found no {kind} model supported by {model_class.min_samples} "
-                         f"or more of the {len(src)} tie points (collinear or all "
-                         "inconsistent); more, better spread tie points are needed")
-    return gcp.fit_transform(src[inliers], dst[inliers], kind, order), inliers
+        raise GCPError(f"RANSAC found no {kind} model supported by {model_class.min_samples} "
+                       f"or more of the {len(src)} tie points (collinear or all "
+                       "inconsistent); more, better spread tie points are needed")
+    return transforms.fit_transform(src[inliers], dst[inliers], kind, order), inliers
 
 
 def _one_blas_thread():
@@ -162,7 +389,7 @@ def _transform(transform):
 
     if transform is None:
         return affine.Affine.identity()
-    return gcp._check_transform(transform, "reference_transform")
+    return accuracy._check_transform(transform, "reference_transform")
 
 
 def _to_map(transform, col_row):
@@ -182,7 +409,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
                           initial=None, kind="polynomial", order=1, iterations=3, upsample=20,
                           min_contrast=2.0, min_reliability=8.0, tolerance=1.0, valid=None,
                           method="cubic", taper=False, seed=0):
-    """Tie points on a grid of windows by phase correlation, AROSICS-style, with a reliability filter.
+    """Tie points on a grid of windows by phase correlation, AROSICS-style, reliability-filtered.
 
     Each pass: resample ``moving`` onto the reference grid through the
     current estimate (map -> moving image; ``initial`` the first time), find
@@ -218,7 +445,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
         from the moving file's own (approximate) georeferencing; by default
         the moving image is taken to be on the reference grid.
     kind, order
-        The global model (:func:`rsgeo.gcp.fit_transform`) of the outlier
+        The global model (:func:`rsgeo.transforms.fit_transform`) of the outlier
         test and of each pass's estimate.
     iterations : int
         Passes at most (1 = a single pass on the first estimate).
@@ -236,7 +463,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     method : {"nearest", "bilinear", "cubic"}
         Resampling of the moving image.
     taper : bool
-        Hann-tapered cross-correlation (:func:`rsgeo.gcp.measure_shifts`'s
+        Hann-tapered cross-correlation (:func:`measure_shifts`'s
         ``taper``): no pull towards zero shift from the windows' cut edges.
     seed : int
         Seed of the RANSAC outlier test.
@@ -263,9 +490,9 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     moving = as_image(moving, "moving").astype(np.float64)
     for name, image in (("reference", reference), ("moving", moving)):
         if image.ndim != 2:
-            raise ValueError(f"{name} must be one band (2-D), got shape {image.shape}")
+            raise ImageError(f"{name} must be one band (2-D), got shape {image.shape}")
         if not np.isfinite(image).all():
-            raise ValueError(f"{name} holds NaN or infinite values; fill them and mark them "
+            raise ImageError(f"{name} holds NaN or infinite values; fill them and mark them "
                              "with valid=False")
     check_choice(method, "method", ("nearest", "bilinear", "cubic"))
     iterations = int(check_range(iterations, "iterations", 1, None, "a number of passes"))
@@ -276,11 +503,11 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     else:
         valid = np.asarray(valid, dtype=bool)
         if valid.shape != reference.shape:
-            raise ValueError(f"valid must have the reference's shape {reference.shape}, got "
+            raise ImageError(f"valid must have the reference's shape {reference.shape}, got "
                              f"{valid.shape}")
     needed = ransac_model(kind, order).min_samples
     passes = []
-    for _ in range(iterations):
+    for _pass in range(iterations):
         try:
             resampled = resample.warp(moving, estimate, reference.shape, transform,
                                       method=method, nodata=np.nan)
@@ -290,11 +517,11 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
             resampled = np.full(reference.shape, np.nan)
         inside = np.isfinite(resampled)
         if not inside.any():
-            raise ValueError("the images do not overlap: the estimate puts no reference pixel "
-                             "inside the moving image; give an initial estimate (map -> moving "
-                             "image) that roughly aligns them")
+            raise GridError("the images do not overlap: the estimate puts no reference pixel "
+                            "inside the moving image; give an initial estimate (map -> moving "
+                            "image) that roughly aligns them")
         with _one_blas_thread():
-            points, shifts, table = gcp.measure_shifts(
+            points, shifts, table = measure_shifts(
                 reference, np.where(inside, resampled, 0.0), spacing, window, upsample, taper,
                 valid=valid & inside, details=True)
         table["dcol"], table["drow"] = shifts[:, 0], shifts[:, 1]
@@ -319,20 +546,17 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
             counts = ", ".join(f"{n} {r}" for r, n in zip(*np.unique(
                 reason[reason != ""].astype(str), return_counts=True)))
             what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
-            raise ValueError(f"{good.sum()} reliable tie points of {len(points)} windows "
-                             f"({counts or 'none rejected'}); {what} needs at least {needed}: "
-                             "use smaller spacing, larger windows or a better initial estimate")
-        estimate = gcp.fit_transform(map_xy[good], image_xy[good], kind, order)
+            raise GCPError(f"{good.sum()} reliable tie points of {len(points)} windows "
+                           f"({counts or 'none rejected'}); {what} needs at least {needed}: "
+                           "use smaller spacing, larger windows or a better initial estimate")
+        estimate = transforms.fit_transform(map_xy[good], image_xy[good], kind, order)
         if passes[-1]["median shift (px)"] < 0.5 / upsample:
             break
     table["reason"] = reason
     image_xy[~good] = np.nan_to_num(image_xy[~good], nan=-1.0)
-    gcps = gcp.GCPSet(map_xy, image_xy, enabled=good,
+    return gcp.GCPSet(map_xy, image_xy, enabled=good,
                       ids=[f"W{k + 1:02d}" for k in range(len(points))],
-                      notes=[r or "reliable" for r in reason])
-    gcps.reliability = table
-    gcps.passes = passes
-    return gcps
+                      notes=[r or "reliable" for r in reason], reliability=table, passes=passes)
 
 
 def _keypoints(image, detector, n_keypoints, seed):
@@ -368,7 +592,7 @@ def feature_tiepoints(reference, moving, detector="sift", reference_transform=No
     reference_transform : affine.Affine, optional
         Reference pixel -> map; by default the reference's pixel coordinates.
     kind, order
-        The model RANSAC fits (:func:`rsgeo.gcp.fit_transform`).
+        The model RANSAC fits (:func:`rsgeo.transforms.fit_transform`).
     threshold : float
         RANSAC's inlier threshold, moving-image pixels.
     max_ratio : float
@@ -403,9 +627,9 @@ def feature_tiepoints(reference, moving, detector="sift", reference_transform=No
     for name, image in (("reference", reference), ("moving", moving)):
         image = as_image(image, name).astype(np.float64)
         if image.ndim != 2:
-            raise ValueError(f"{name} must be one band (2-D), got shape {image.shape}")
+            raise ImageError(f"{name} must be one band (2-D), got shape {image.shape}")
         if not np.isfinite(image).all() or image.std() == 0:
-            raise ValueError(f"{name} is constant or holds NaN: no keypoint can be found in it")
+            raise ImageError(f"{name} is constant or holds NaN: no keypoint can be found in it")
         images.append(image)
     check_range(max_ratio, "max_ratio", 0, 1, "a ratio of descriptor distances")
     transform = _transform(reference_transform)
@@ -422,23 +646,21 @@ def feature_tiepoints(reference, moving, detector="sift", reference_transform=No
     else:
         matches = np.empty((0, 2), int)
     if len(matches) < needed:
-        raise ValueError(f"{detector.upper()} found {len(ref_xy)} and {len(mov_xy)} keypoints "
-                         f"and {len(matches)} matches; the {kind} model needs at least "
-                         f"{needed}: the images may not overlap or may look too different")
+        raise GCPError(f"{detector.upper()} found {len(ref_xy)} and {len(mov_xy)} keypoints "
+                       f"and {len(matches)} matches; the {kind} model needs at least "
+                       f"{needed}: the images may not overlap or may look too different")
     map_xy = _to_map(transform, ref_xy[matches[:, 0]])
     image_xy = mov_xy[matches[:, 1]]
     _, inliers = robust_fit(map_xy, image_xy, kind, order, threshold, max_trials, seed)
-    gcps = gcp.GCPSet(map_xy[inliers], image_xy[inliers],
-                      ids=[f"{detector.upper()}{k + 1:03d}" for k in range(int(inliers.sum()))])
-    gcps.n_keypoints = (len(ref_xy), len(mov_xy))
-    gcps.n_matches = len(matches)
-    gcps.candidates = gcp.GCPSet(map_xy, image_xy, enabled=inliers)
-    return gcps
+    return gcp.GCPSet(map_xy[inliers], image_xy[inliers],
+                      ids=[f"{detector.upper()}{k + 1:03d}" for k in range(int(inliers.sum()))],
+                      n_keypoints=(len(ref_xy), len(mov_xy)), n_matches=len(matches),
+                      candidates=gcp.GCPSet(map_xy, image_xy, enabled=inliers))
 
 
 @dataclass
 class Registration:
-    """The outcome of :func:`register`.
+    """A registration's result: :func:`register`'s or :func:`rsgeo.matching.register_by_regions`'s.
 
     Attributes
     ----------
@@ -449,29 +671,38 @@ class Registration:
     rms_all, rms_kept : float
         Lecture's RMS (pixels) of the model fitted on all enabled GCPs, and of
         the refined model on the kept ones.
+    map_xy, image_xy : ndarray, shape (k, 2), or None
+        The GCPs the model was fitted on (before refinement); with
+        :func:`rsgeo.matching.register_by_regions`, the matched reference
+        centroids (map units) and adjustment centroids (adjustment pixels).
+    match : rsgeo.matching.MatchResult or None
+        The GA's matching of adjustment segments to reference labels, when
+        the GCPs come from :func:`rsgeo.matching.register_by_regions`.
     """
 
     model: object
     kept: np.ndarray
     rms_all: float
     rms_kept: float
+    map_xy: np.ndarray = None
+    image_xy: np.ndarray = None
+    match: object = None
 
 
 def register(gcps, kind="polynomial", order=1, tolerance=1.0, min_gcps=None):
-    """The shared pipeline's last steps: GCPSet -> model -> refinement, like ``gdalwarp -refine_gcps``.
+    """The shared pipeline's last steps: GCPSet -> model -> refinement (``gdalwarp -refine_gcps``).
 
     Whatever found the GCPs (a human, the GA paper's matched regions,
     correlation, features), the model is fitted the same way: on the enabled
     GCPs, then the worst GCP is dropped while its residual is over
-    ``tolerance`` (:func:`rsgeo.gcp.refine_gcps` for polynomials; the same
-    loop on :func:`rsgeo.gcp.fit_transform` for the other kinds).
+    ``tolerance`` (:func:`rsgeo.accuracy.refine_gcps`, for any kind).
 
     Parameters
     ----------
     gcps : GCPSet
         Map (x, y) and image (col, row); disabled GCPs are left out.
     kind, order
-        As :func:`rsgeo.gcp.fit_transform`.
+        As :func:`rsgeo.transforms.fit_transform`.
     tolerance : float
         Refinement tolerance, image pixels.
     min_gcps : int, optional
@@ -485,8 +716,10 @@ def register(gcps, kind="polynomial", order=1, tolerance=1.0, min_gcps=None):
     Raises
     ------
     ValueError
-        If ``gcps`` is not a GCPSet, or as :func:`rsgeo.gcp.fit_transform`
-        and :func:`rsgeo.gcp.refine_gcps` (too few GCPs, a negative tolerance).
+        As :func:`rsgeo.transforms.fit_transform` and
+        :func:`rsgeo.accuracy.refine_gcps` (too few GCPs, a negative tolerance).
+    TypeError
+        If ``gcps`` is not a GCPSet.
 
     Examples
     --------
@@ -498,28 +731,13 @@ def register(gcps, kind="polynomial", order=1, tolerance=1.0, min_gcps=None):
     ([True, True, True, True, False], 0.0)
     """
     if not isinstance(gcps, gcp.GCPSet):
-        raise ValueError(f"gcps must be a rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
+        raise TypeError(f"gcps must be a rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
     map_xy, image_xy = gcps.map_xy[gcps.enabled], gcps.image_xy[gcps.enabled]
     order = order if kind == "polynomial" else None
-    rms_all = gcp.fit_transform(map_xy, image_xy, kind, order).rms(map_xy, image_xy)
-    if kind == "polynomial":
-        model, kept = gcp.refine_gcps(map_xy, image_xy, order, tolerance, min_gcps)
-    else:
-        floor = gcp.min_gcps(kind)
-        min_gcps = floor if min_gcps is None else int(min_gcps)
-        if min_gcps < floor:
-            raise ValueError(f"min_gcps must be at least {floor} for {kind!r}, got {min_gcps}")
-        check_range(tolerance, "tolerance", 0, None, "a residual in pixels")
-        kept = np.ones(len(map_xy), bool)
-        model = gcp.fit_transform(map_xy, image_xy, kind)
-        while kept.sum() > min_gcps:
-            distance = model.residuals(map_xy[kept], image_xy[kept])
-            worst = int(np.argmax(distance))
-            if distance[worst] < tolerance:
-                break
-            kept[np.flatnonzero(kept)[worst]] = False
-            model = gcp.fit_transform(map_xy[kept], image_xy[kept], kind)
-    return Registration(model, kept, rms_all, model.rms(map_xy[kept], image_xy[kept]))
+    rms_all = transforms.fit_transform(map_xy, image_xy, kind, order).rms(map_xy, image_xy)
+    model, kept = accuracy.refine_gcps(map_xy, image_xy, order, tolerance, min_gcps, kind)
+    return Registration(model, kept, rms_all, model.rms(map_xy[kept], image_xy[kept]),
+                        map_xy, image_xy)
 
 
 def grid_error(model, truth, transform, shape, step=10):
@@ -563,12 +781,12 @@ def grid_error(model, truth, transform, shape, step=10):
     """
     rows, cols = as_shape(shape)
     if int(step) != step or step < 1:
-        raise ValueError(f"step must be a positive whole number of pixels, got {step!r}")
+        raise GridError(f"step must be a positive whole number of pixels, got {step!r}")
     grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
     map_xy = _to_map(transform, np.column_stack([grid_cols.ravel(), grid_rows.ravel()]))
     difference = _apply(model, map_xy) - _apply(truth, map_xy)
     if not np.isfinite(difference).all():
-        raise ValueError("a model gave NaN or infinite positions on the check grid")
+        raise ModelError("a model gave NaN or infinite positions on the check grid")
     return float(np.sqrt(np.mean(np.sum(difference**2, axis=1))))
 
 
@@ -602,7 +820,8 @@ def coarsen(image, transform, factor):
     Examples
     --------
     >>> import affine
-    >>> blocks, t = coarsen(np.arange(16.0).reshape(4, 4), affine.Affine(2.5, 0, 0, 0, -2.5, 10), 2)
+    >>> transform = affine.Affine(2.5, 0, 0, 0, -2.5, 10)
+    >>> blocks, t = coarsen(np.arange(16.0).reshape(4, 4), transform, 2)
     >>> blocks.tolist(), t.a
     ([[2.5, 4.5], [10.5, 12.5]], 5.0)
     """
@@ -610,10 +829,10 @@ def coarsen(image, transform, factor):
 
     image = as_image(image, "image").astype(np.float64)
     if image.ndim != 2:
-        raise ValueError(f"image must be one band (2-D), got shape {image.shape}")
+        raise ImageError(f"image must be one band (2-D), got shape {image.shape}")
     if int(factor) != factor or not 1 <= factor <= min(image.shape):
-        raise ValueError(f"factor must be a whole number from 1 to {min(image.shape)}, "
-                         f"got {factor!r}")
+        raise GridError(f"factor must be a whole number from 1 to {min(image.shape)}, "
+                        f"got {factor!r}")
     factor = int(factor)
     rows, cols = (n // factor * factor for n in image.shape)
     blocks = image[:rows, :cols].reshape(rows // factor, factor, cols // factor, factor)
@@ -656,10 +875,10 @@ def perturb_transform(transform, shift=(0.0, 0.0), degrees=0.0, centre=None):
     """
     import affine
 
-    gcp._check_transform(transform, "transform")
+    accuracy._check_transform(transform, "transform")
     values = [*np.ravel(shift), degrees] + ([] if centre is None else list(np.ravel(centre)))
     if not np.isfinite(np.asarray(values, dtype=float)).all():
-        raise ValueError(f"shift, degrees and centre must be finite numbers, got {values}")
+        raise GridError(f"shift, degrees and centre must be finite numbers, got {values}")
     cx, cy = transform @ (0, 0) if centre is None else centre
     return (affine.Affine.translation(*shift) @ affine.Affine.translation(cx, cy)
             @ affine.Affine.rotation(degrees) @ affine.Affine.translation(-cx, -cy) @ transform)

@@ -18,8 +18,9 @@ import weakref
 
 import numpy as np
 
-from . import distortion, gcp, matching, radiometry
+from . import accuracy, distortion, matching, radiometry, transforms
 from ._checks import check_choice, check_range
+from .errors import GCPError, GridError, RsgeoError
 from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
 
 __all__ = [
@@ -83,7 +84,7 @@ def render_png(figure, dpi=DPI):
     b'\\x89PNG'
     """
     if not (isinstance(dpi, (int, float)) and dpi > 0):
-        raise ValueError(f"dpi must be a positive number, got {dpi!r}")
+        raise RsgeoError(f"dpi must be a positive number, got {dpi!r}")
     buffer = io.BytesIO()
     # zlib level 1: faster to encode than the default (6), and these frames come out no larger
     figure.savefig(buffer, format="png", dpi=dpi, pil_kwargs={"compress_level": 1})
@@ -146,14 +147,16 @@ def distortion_explorer(shape=(300, 300)):
     import ipywidgets as widgets
 
     if len(shape) != 2 or min(int(n) for n in shape) < 1:
-        raise ValueError(f"shape must be two positive integers (rows, cols), got {shape!r}")
+        raise GridError(f"shape must be two positive integers (rows, cols), got {shape!r}")
     shape = (int(shape[0]), int(shape[1]))
     controls = {
-        "latitude": widgets.FloatSlider(value=-23.0, min=-80, max=80, step=1, description="latitude °"),
+        "latitude": widgets.FloatSlider(value=-23.0, min=-80, max=80, step=1,
+                                        description="latitude °"),
         "roll": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="roll (px)"),
         "pitch": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="pitch (px)"),
         "yaw": widgets.FloatSlider(value=0.0, min=-10, max=10, step=0.5, description="yaw °"),
-        "yaw_rate": widgets.FloatSlider(value=0.0, min=-0.03, max=0.03, step=0.005, readout_format=".3f",
+        "yaw_rate": widgets.FloatSlider(value=0.0, min=-0.03, max=0.03, step=0.005,
+                                        readout_format=".3f",
                                         description="yaw °/line"),
         "scan": widgets.FloatSlider(value=30.0, min=0, max=60, step=1, description="scan angle °"),
     }
@@ -183,11 +186,13 @@ def distortion_explorer(shape=(300, 300)):
         left.set_title(f"grid as recorded (last line {skew_km:.1f} km west per 185 km)", y=1.0)
         a, c = distortion.pixel_size(value["scan"], 705.0)
         marks.set_offsets([[value["scan"], float(a)], [value["scan"], float(c)]])
-        right.set_title(f"MODIS-like, 705 km: {float(a):.2f} × {float(c):.2f} km at {value['scan']:.0f}°",
+        right.set_title(f"MODIS-like, 705 km: {float(a):.2f} × {float(c):.2f} km at "
+                        f"{value['scan']:.0f}°",
                         y=1.0)
 
     output = widgets.Output()
-    box = widgets.VBox([widgets.HBox(list(controls.values())[:3]), widgets.HBox(list(controls.values())[3:]),
+    box = widgets.VBox([widgets.HBox(list(controls.values())[:3]),
+                        widgets.HBox(list(controls.values())[3:]),
                         output])
     return _live(box, output, figure, update, controls.values())
 
@@ -217,12 +222,14 @@ def gcp_explorer(gcps, order=1, index=0):
     import ipywidgets as widgets
 
     if order not in (1, 2, 3):
-        raise ValueError(f"order must be 1, 2 or 3, got {order!r}")
+        raise GCPError(f"order must be 1, 2 or 3, got {order!r}")
     if not 0 <= int(index) < len(gcps):
-        raise ValueError(f"index must name one of the {len(gcps)} GCPs (0 to {len(gcps) - 1}), got {index}")
+        raise GCPError(f"index must name one of the {len(gcps)} GCPs (0 to {len(gcps) - 1}), got "
+                       f"{index}")
     dcol = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δcol (px)")
     drow = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δrow (px)")
-    which = widgets.Dropdown(options=[(name, i) for i, name in enumerate(gcps.ids)], value=int(index),
+    which = widgets.Dropdown(options=[(name, i) for i, name in enumerate(gcps.ids)],
+                             value=int(index),
                              description="GCP")
     degree = widgets.Dropdown(options=[1, 2, 3], value=order, description="degree")
     figure = _widget_figure((9, 3.5))
@@ -236,8 +243,8 @@ def gcp_explorer(gcps, order=1, index=0):
     def update():
         image_xy = gcps.image_xy.copy()
         image_xy[which.value] += (dcol.value, drow.value)
-        model = gcp.fit_polynomial(gcps.map_xy, image_xy, degree.value)
-        _, _, distance = gcp.residuals(model, gcps.map_xy, image_xy)
+        model = transforms.fit_polynomial(gcps.map_xy, image_xy, degree.value)
+        _, _, distance = accuracy.residuals(model, gcps.map_xy, image_xy)
         rms = model.rms(gcps.map_xy, image_xy)
         for i, (bar, height) in enumerate(zip(bars, distance)):
             bar.set_height(height)
@@ -254,7 +261,7 @@ def gcp_explorer(gcps, order=1, index=0):
 
 
 def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("ols", "rma")):
-    """Animate the paper's correction: from no correction (t = 0) to a fitted gain and offset (t = 1).
+    """Animate the paper's correction: from none (t = 0) to a fitted gain and offset (t = 1).
 
     A Play button and a slider move t; the *filter* menu chooses the mean
     filter and the *method* menu the regression (``"ols"``, the paper's, or
@@ -294,10 +301,11 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
 
 
     if size not in sizes:
-        raise ValueError(f"size {size!r} must be one of the offered sizes {tuple(sizes)}")
+        raise RsgeoError(f"size {size!r} must be one of the offered sizes {tuple(sizes)}")
     for name in methods:
         check_choice(name, "method", radiometry.FIT_METHODS)
-    fits = {(s, m): radiometry.fit_gain_offset(x_image, y_image, smooth=s if s > 1 else None, method=m)
+    fits = {(s, m): radiometry.fit_gain_offset(x_image, y_image, smooth=s if s > 1 else None,
+                                               method=m)
             for s in sizes for m in methods}
     step = widgets.IntSlider(value=0, min=0, max=10, description="t × 10")
     play = widgets.Play(value=0, min=0, max=10, step=1, interval=400, description="play")
@@ -359,9 +367,9 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
     import ipywidgets as widgets
 
     if int(generations) < 2:
-        raise ValueError(f"generations must be at least 2 to show an evolution, got {generations}")
+        raise RsgeoError(f"generations must be at least 2 to show an evolution, got {generations}")
     if len(truth) != len(adjustment):
-        raise ValueError(f"truth needs one label per adjustment segment ({len(adjustment)}), "
+        raise RsgeoError(f"truth needs one label per adjustment segment ({len(adjustment)}), "
                          f"got {len(truth)}")
     generations = int(generations)
     # a GA run per change: the sliders report on release, not at every step of a drag
@@ -387,7 +395,8 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
                 reference, adjustment, seed=seed, population_size=population.value,
                 generations=generations, elite_fraction=elite.value, mutation_rate=mutation.value,
                 selection=selection.value, tournament_size=3)   # as chapter 6b's runs
-        draw_evolution_frame(reference, adjustment, truth, runs[key].history[:generation.value + 1],
+        draw_evolution_frame(reference, adjustment, truth,
+                             runs[key].history[:generation.value + 1],
                              figure, generations=generations)
 
     output = widgets.Output()
@@ -430,12 +439,13 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
         If ``history`` is empty.
     """
     if not history:
-        raise ValueError("history must hold at least one generation to draw")
+        raise RsgeoError("history must hold at least one generation to draw")
     if figure is None:
         figure = _pyplot().figure(figsize=(12, 4.5))
     last = max(len(history), int(generations or 0)) - 1
     state = _EVOLUTION_ARTISTS.get(figure)
-    fresh = (state is None or state["reference"] is not reference or state["adjustment"] is not adjustment
+    fresh = (state is None or state["reference"] is not reference
+             or state["adjustment"] is not adjustment
              or state["truth"] is not truth or state["last"] != last
              or any(ax not in figure.axes for ax in state["axes"]))
     if fresh:
@@ -461,12 +471,16 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
 
 
 def _draw_evolution_axes(figure, reference, adjustment, truth, last):
-    """Draw an evolution frame's fixed parts and empty moving artists (see :func:`draw_evolution_frame`)."""
+    """Draw an evolution frame's fixed parts and empty moving artists.
+
+    See :func:`draw_evolution_frame`.
+    """
     from matplotlib.collections import LineCollection
 
     figure.clear()
     left, right = figure.subplots(1, 2)
-    offset = np.array([reference.centroids[:, 0].max() - adjustment.centroids[:, 0].min() + 80, 0.0])
+    offset = np.array([reference.centroids[:, 0].max() - adjustment.centroids[:, 0].min() + 80,
+                       0.0])
     shifted = adjustment.centroids + offset
     draw_mesh(left, reference.centroids, color="tab:green")
     draw_mesh(left, shifted, color="tab:orange")
@@ -502,7 +516,7 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     gcps : rsgeo.gcp.GCPSet
         Its enabled GCPs are used (map -> image).
     model : str
-        Label shown first, one of ``rsgeo.gcp.GEOREFERENCER_MODELS``' labels.
+        Label shown first, one of ``rsgeo.transforms.GEOREFERENCER_MODELS``' labels.
     exaggeration : float
         Initial factor for the grid's departure and the arrows (1 to 50).
 
@@ -519,7 +533,7 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     """
     import ipywidgets as widgets
 
-    labels = [label for label, _, _ in gcp.GEOREFERENCER_MODELS]
+    labels = [label for label, _, _ in transforms.GEOREFERENCER_MODELS]
     check_choice(model, "model", labels)
     exaggeration = check_range(exaggeration, "exaggeration", low=1, high=50)
     enabled = np.asarray(getattr(gcps, "enabled", np.ones(len(gcps), bool)), bool)
@@ -533,12 +547,12 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     lines = ([np.column_stack([np.full(41, x), fine_y]) for x in xs]
              + [np.column_stack([fine_x, np.full(41, y)]) for y in ys])
     points = np.vstack(lines)
-    affine = gcp.fit_transform(map_xy, image_xy, "polynomial", 1)
+    affine = transforms.fit_transform(map_xy, image_xy, "polynomial", 1)
     base = affine(points)
     fitted = {}
-    for label, kind, order in gcp.GEOREFERENCER_MODELS:
-        fitted_model = gcp.fit_transform(map_xy, image_xy, kind, order)
-        loo = gcp.transform_leave_one_out(map_xy, image_xy, kind, order)
+    for label, kind, order in transforms.GEOREFERENCER_MODELS:
+        fitted_model = transforms.fit_transform(map_xy, image_xy, kind, order)
+        loo = accuracy.leave_one_out_errors(map_xy, image_xy, order, kind)
         fitted[label] = (fitted_model.n_parameters, fitted_model(points) - base,
                          fitted_model(map_xy) - image_xy,
                          fitted_model.rms(map_xy, image_xy), float(np.sqrt(np.mean(loo**2))))

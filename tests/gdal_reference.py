@@ -60,8 +60,10 @@ def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodat
         if plain_kernels:
             scale = (1, 1)
         scale_options = (f'<Option name="XSCALE">{scale[0]!r}</Option>'
-                         f'<Option name="YSCALE">{scale[1]!r}</Option>' if scale is not None else "")
-        xml = f"""<VRTDataset rasterXSize="{shape[1]}" rasterYSize="{shape[0]}" subClass="VRTWarpedDataset">
+                         f'<Option name="YSCALE">{scale[1]!r}</Option>'
+                         if scale is not None else "")
+        xml = f"""<VRTDataset rasterXSize="{shape[1]}" rasterYSize="{shape[0]}" \
+subClass="VRTWarpedDataset">
   <GeoTransform>{_geotransform(dst_transform)}</GeoTransform>
   {bands}
   <BlockXSize>{block}</BlockXSize><BlockYSize>{block}</BlockYSize>
@@ -128,8 +130,8 @@ def gdal_map_to_image(image_xy, map_xy, order, dst_transform, shape, refine=None
     return np.where(inside, out[0], np.nan), np.where(inside, out[1], np.nan)
 
 
-def gdalwarp_reproject(image, src_transform, dst_transform, shape, method, nodata, crs="EPSG:29191",
-                       **warp_options):
+def gdalwarp_reproject(image, src_transform, dst_transform, shape, method, nodata,
+                       crs="EPSG:29191", **warp_options):
     """What gdalwarp itself gives: rasterio.warp.reproject, GDAL's chunked warp operation.
 
     Unlike :func:`gdal_warp` (a VRTWarpedDataset, which computes the scale of

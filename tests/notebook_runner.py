@@ -4,18 +4,17 @@ Imported by the tests and by ``benchmarks/notebooks.py`` (never conftest.py, whi
 
 CI executes each notebook once: the book's build (the README's first command) executes every
 notebook into its cache, ``_build/.jupyter_cache``, with the figure audit on in its kernels
-(book/_ext/offline_book.py). :func:`executed_notebook` reads that execution when it matches the
-notebook's current code and is newer than every file of rsgeo and its data; otherwise it
+(book/_ext/offline_book.py, figure_audit.py). :func:`executed_notebook` reads that execution
+when it matches the notebook's current code and is newer than every file of rsgeo and its data,
+the saved benchmark tables, chapter 6's experiment harness and the audit; otherwise it
 executes the notebook itself, with the same audit.
 """
 
 import datetime
-import json
 import os
+import sys
 import time
 from pathlib import Path
-
-import sys
 
 import nbformat
 import pytest
@@ -23,15 +22,14 @@ from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "book" / "_ext"))
-from offline_book import IPCKernelManager  # noqa: E402  (the book build's kernels, the same way)
+# the book build's kernels, the same way: over IPC sockets, the audited ones auditing figures
+from figure_audit import problems_written  # noqa: E402
+from offline_book import AuditedKernelManager, IPCKernelManager  # noqa: E402
+
 BOOK_CACHE = ROOT / "_build" / ".jupyter_cache"
 # what a cached execution depends on besides the notebook's own code
-DEPENDENCIES = ("rsgeo", "benchmarks/results")
-
-# Injected before a notebook's first cell and after its last: every figure the notebook renders
-# (shown, animated or drawn by a widget) is checked by rsgeo.plot.figure_problems.
-AUDIT_START = "import rsgeo.plot\nrsgeo.plot.audit_rendered_figures()"
-AUDIT_END = "import json, rsgeo.plot\nprint('FIGURE_PROBLEMS=' + json.dumps(rsgeo.plot.FIGURE_PROBLEMS))"
+DEPENDENCIES = ("rsgeo", "benchmarks/results", "benchmarks/ga_experiments.py",
+                "book/_ext/figure_audit.py")
 
 
 def skip_module_unless_ready(missing, what):
@@ -49,28 +47,25 @@ def execute_notebook(path, timeout=600, audit_figures=False):
 
     The kernel talks to this process over Unix sockets in a private folder (IPC), not TCP ports,
     so kernels started at once by parallel test workers cannot take each other's ports.
-    With ``audit_figures``, the returned notebook has ``metadata["figure_problems"]``
-    (see :func:`rsgeo.plot.figure_problems`). ``metadata["seconds"]`` is its wall time.
+    With ``audit_figures``, the kernel audits every figure it renders, as the book build's
+    kernels do (book/_ext/figure_audit.py), and the returned notebook has
+    ``metadata["figure_problems"]``. ``metadata["seconds"]`` is its wall time.
     Raises nbclient's CellExecutionError at the first failing cell.
     """
     notebook = nbformat.read(path, as_version=4)
-    if audit_figures:
-        notebook.cells.insert(0, nbformat.v4.new_code_cell(AUDIT_START))
-        notebook.cells.append(nbformat.v4.new_code_cell(AUDIT_END))
-    client = NotebookClient(notebook, km=IPCKernelManager(kernel_name="python3"), timeout=timeout,
-                            kernel_name="python3", resources={"metadata": {"path": str(Path(path).parent)}})
+    manager = (AuditedKernelManager if audit_figures else IPCKernelManager)(kernel_name="python3")
+    client = NotebookClient(notebook, km=manager, timeout=timeout, kernel_name="python3",
+                            resources={"metadata": {"path": str(Path(path).parent)}})
     start = time.perf_counter()
     client.execute()
     notebook.metadata["seconds"] = time.perf_counter() - start
     if audit_figures:
-        text = "".join(output.get("text", "") for output in notebook.cells[-1].outputs)
-        notebook.metadata["figure_problems"] = json.loads(text.split("FIGURE_PROBLEMS=", 1)[1])
-        del notebook.cells[0], notebook.cells[-1]
+        notebook.metadata["figure_problems"] = problems_written(notebook)
     return notebook
 
 
 def _newest_dependency():
-    files = [path for folder in DEPENDENCIES for path in (ROOT / folder).rglob("*")
+    files = [path for name in DEPENDENCIES for path in [ROOT / name, *(ROOT / name).rglob("*")]
              if path.is_file() and "__pycache__" not in path.parts]
     return max(path.stat().st_mtime for path in files)
 
@@ -86,8 +81,6 @@ def cached_execution(path):
         return None
     from jupyter_cache import get_cache
 
-    from rsgeo.plot import FIGURE_PROBLEM_PREFIX
-
     cache = get_cache(BOOK_CACHE)
     try:
         key, notebook = cache.merge_match_into_notebook(nbformat.read(path, as_version=4))
@@ -97,11 +90,7 @@ def cached_execution(path):
     created = record.created.replace(tzinfo=datetime.timezone.utc).timestamp()
     if created < _newest_dependency():
         return None
-    stderr = [output.get("text", "") for cell in notebook.cells for output in cell.get("outputs", [])
-              if output.get("name") == "stderr"]
-    notebook.metadata["figure_problems"] = [
-        line[len(FIGURE_PROBLEM_PREFIX):] for text in stderr for line in text.splitlines()
-        if line.startswith(FIGURE_PROBLEM_PREFIX)]
+    notebook.metadata["figure_problems"] = problems_written(notebook)
     notebook.metadata["seconds"] = record.data.get("execution_seconds")
     notebook.metadata["executed_by"] = "the book build"
     return notebook

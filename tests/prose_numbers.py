@@ -33,7 +33,7 @@ _NOT_PROSE = [
     r"<[^>]+>",                                     # HTML tags and their attributes
     r"^\s*:[a-z-]+:[^\n]*$",                            # directive options (:label:, :width: ...)
     r"\([a-zA-Z_]+-[a-zA-Z0-9_-]+\)=",              # MyST targets (label)=
-    r"^#+ [^\n]*$",                                     # headings: numbered by the table of contents
+    r"^#+ [^\n]*$",                                 # headings: numbered by the table of contents
 ]
 NOT_PROSE = re.compile("|".join(_NOT_PROSE), flags=re.S | re.M)
 

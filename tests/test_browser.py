@@ -1,4 +1,5 @@
-"""The built HTML books, opened page by page in a real browser (Debian's Chromium, driven by Playwright).
+"""The built HTML books, opened page by page in a real browser (Debian's Chromium, driven by
+Playwright).
 
 Both books: the English one (_build/html) and the Portuguese edition (_build/pt_BR/_build/html).
 For every page of each: its ``<html lang>`` ("en", "pt-BR"), no console error, no failed request,
@@ -88,7 +89,8 @@ def check_page(browser, base, path, screenshot=None, lang=None):
                         f"not {lang!r}")
 
     broken = page.evaluate("""Array.from(document.images)
-        .filter(img => !img.complete || img.naturalWidth === 0).map(img => img.src.slice(0, 80))""")
+        .filter(img => !img.complete || img.naturalWidth === 0)
+        .map(img => img.src.slice(0, 80))""")
     problems += [f"broken image: {src}" for src in broken]
 
     animations = page.locator("div.animation")
@@ -106,7 +108,8 @@ def check_page(browser, base, path, screenshot=None, lang=None):
     if saved_views:
         try:
             page.wait_for_function(f"document.querySelectorAll('.widget-slider, .widget-dropdown, "
-                                   f".widget-play, .jupyter-widgets.widget-output').length >= {saved_views}",
+                                   f".widget-play, .jupyter-widgets.widget-output').length "
+                                   f">= {saved_views}",
                                    timeout=15000)
         except Exception:  # noqa: BLE001 - a timeout is the finding
             problems.append(f"{saved_views} saved widget(s) did not render")
@@ -209,8 +212,10 @@ def test_the_checks_catch_a_broken_page(browser, tmp_path):
     # A copy of a real page with its animation's frames and an image broken on purpose.
     source = (BUILD / "book" / "01_systematic_distortions.html").read_text()
     assert source.count("= new Animation(frames,") == 1 and "<img " in source
-    broken = source.replace("= new Animation(frames,", "= new Animation([],", 1)     # a player with no frames
-    broken = broken.replace("<img ", '<img src="missing-figure.png" ', 1)            # a figure that is not there
+    # a player with no frames
+    broken = source.replace("= new Animation(frames,", "= new Animation([],", 1)
+    # a figure that is not there
+    broken = broken.replace("<img ", '<img src="missing-figure.png" ', 1)
     shutil.copytree(BUILD, tmp_path / "html")
     (tmp_path / "html" / "book" / "01_systematic_distortions.html").write_text(broken)
     server, base = serve(tmp_path / "html")
@@ -227,7 +232,8 @@ def _repository_url():
 
     from offline_book import repository_configured
 
-    url = (yaml.safe_load((ROOT / "_config.yml").read_text()).get("repository") or {}).get("url", "")
+    url = (yaml.safe_load((ROOT / "_config.yml").read_text()).get("repository")
+           or {}).get("url", "")
     return url, repository_configured(url)
 
 
@@ -240,12 +246,15 @@ def test_no_link_to_a_placeholder_repository(browser, site):
     from offline_book import PLACEHOLDER_REPOSITORIES
 
     url, configured = _repository_url()
-    placeholders = [placeholder.split("github.com/")[1] for placeholder in PLACEHOLDER_REPOSITORIES]
+    placeholders = [placeholder.split("github.com/")[1]
+                    for placeholder in PLACEHOLDER_REPOSITORIES]
     for page_file in sorted(BUILD.rglob("*.html")):
         text = page_file.read_text(errors="replace")
-        assert not any(name in text for name in placeholders), f"{page_file.name} names a placeholder"
+        assert not any(name in text for name in placeholders), (
+            f"{page_file.name} names a placeholder")
         if not configured:
-            assert not any(host in text for host in LAUNCH_SITES), f"{page_file.name} has a launch link"
+            assert not any(host in text for host in LAUNCH_SITES), (
+                f"{page_file.name} has a launch link")
     page = browser.new_page()
     page.goto(f"{site}/book/01_systematic_distortions.html", wait_until="load")
     links = page.evaluate("Array.from(document.querySelectorAll('a[href]')).map(a => a.href)")

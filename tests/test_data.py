@@ -1,5 +1,8 @@
 """rsgeo.data: every shipped file opens offline with the metadata its README states."""
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -67,7 +70,8 @@ def test_path_of_every_shipped_file():
     assert data.path("cbers2b_ccd_hrc.points") == points
     from rsgeo.gcp import read_points
 
-    np.testing.assert_array_equal(read_points(points).map_xy, data.load_gcps("cbers2b_ccd_hrc").map_xy)
+    np.testing.assert_array_equal(read_points(points).map_xy,
+                                  data.load_gcps("cbers2b_ccd_hrc").map_xy)
     with pytest.raises(ValueError, match=r"'landsat'.*nat2.*GCP sets: cbers2b_ccd_hrc.*\.points"):
         data.path("landsat")
     with pytest.raises(ValueError, match="unknown dataset 'cbers2b_ccd_hrc'"):
@@ -126,3 +130,11 @@ def test_save_refuses_a_bands_last_rgb_array(tmp_path):
     with pytest.raises(ValueError, match=r"bands last.*np\.moveaxis\(array, -1, 0\)"):
         data.save(tmp_path / "rgb.tif", rgb)
     assert not (tmp_path / "rgb.tif").exists()
+
+
+def test_import_does_not_load_numba():
+    # reading a shipped scene needs no compiler: Numba (a second or more) loads with resampling
+    code = "import sys, rsgeo.data; print('numba' in sys.modules)"
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "False"

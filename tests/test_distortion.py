@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rsgeo import data, distortion, gcp
+from rsgeo import data, distortion, tiepoints
 
 
 def test_modis_edge_pixel_and_swath():
@@ -29,8 +29,8 @@ def test_flat_earth_underestimates_the_edge_pixel():
     ("Landsat", 705.0, 7.5, 0.021),           # 185 km swath: ±7.5°
 ])
 def test_narrow_field_of_view_is_irrelevant(name, altitude, half_angle, across_limit):
-    # Lecture, slide "Distorção - campo de visada": the narrow sensors' growth is irrelevant, each at
-    # its own half-angle: at most 2 % across track (Landsat, 2.04 % on a sphere).
+    # Lecture, slide "Distorção - campo de visada": the narrow sensors' growth is irrelevant,
+    # each at its own half-angle: at most 2 % across track (Landsat, 2.04 % on a sphere).
     along, across = distortion.pixel_size(half_angle, altitude)
     assert 0 < float(along) - 1 < across_limit / 2
     assert 0 < float(across) - 1 < across_limit
@@ -44,7 +44,8 @@ def test_spot_pointed_off_nadir_sees_large_pixels():
 
 
 def test_landsat_skew_at_the_equator():
-    # Richards & Jia (2006), ch. 2: Landsat 7's 185 km frame is skewed by about 12.6 km at the equator.
+    # Richards & Jia (2006), ch. 2: Landsat 7's 185 km frame is skewed by about 12.6 km at the
+    # equator.
     assert distortion.earth_rotation_skew(0.0, 185.0, 705.0, 98.2) == pytest.approx(12.6, rel=0.03)
 
 
@@ -62,12 +63,15 @@ def test_skew_falls_with_latitude_and_vanishes_at_the_orbit_limit():
     (lambda: distortion.pixel_size(70.0, 705.0), "beyond the horizon"),
     (lambda: distortion.swath_width(np.nan, 705.0), "finite"),
     (lambda: distortion.SystematicDistortion(scale=0), "scale must be"),
-    (lambda: distortion.earth_rotation_skew(0.0, pass_direction="north"), "pass_direction must be"),
+    (lambda: distortion.earth_rotation_skew(0.0, pass_direction="north"),
+     "pass_direction must be"),
     (lambda: distortion.attitude_displacement(0.1, 705.0, axis="yaw"), "axis must be"),
-    (lambda: distortion.attitude_displacement(1.0, 705.0, scan_angle_deg=63.5), "beyond the horizon"),
+    (lambda: distortion.attitude_displacement(1.0, 705.0, scan_angle_deg=63.5),
+     "beyond the horizon"),
     (lambda: distortion.scan_footprint(10.0, 705.0, detectors=0), "detectors must be"),
     (lambda: distortion.SystematicDistortion(roll_deg=0.1), "need view_altitude_km"),
-    (lambda: distortion.SystematicDistortion().with_knowledge_errors(roll_deg=0.01), "need view_altitude"),
+    (lambda: distortion.SystematicDistortion().with_knowledge_errors(roll_deg=0.01),
+     "need view_altitude"),
 ])
 def test_non_physical_input_is_a_value_error(call, message):
     with pytest.raises(ValueError, match=message):
@@ -81,15 +85,18 @@ def test_simulate_then_correct_a_real_scene():
     recorded = distortion.simulate(truth, model, method="cubic")
     corrected = distortion.correct(recorded, model, method="cubic")
     inner = slice(100, 500)
-    _, before = gcp.measure_shifts(truth[inner, inner], recorded[inner, inner], step=50, window=64)
-    points, after = gcp.measure_shifts(truth[inner, inner], corrected[inner, inner], step=50, window=64)
+    _, before = tiepoints.measure_shifts(truth[inner, inner], recorded[inner, inner], step=50,
+                                         window=64)
+    points, after = tiepoints.measure_shifts(truth[inner, inner], corrected[inner, inner], step=50,
+                                             window=64)
     assert len(points) >= 40
     assert np.hypot(*before.T).mean() > 5                 # the distortion is real
     assert np.hypot(*after.T).max() < 0.5                 # and the correction removes it
 
 
 def test_panoramic_model_inverts_exactly():
-    model = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0, yaw_rate_deg_per_line=0.01,
+    model = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
+                                            yaw_rate_deg_per_line=0.01,
                                             shape=(800, 1000))
     rng = np.random.default_rng(0)
     points = np.column_stack([rng.uniform(0, 1000, 500), rng.uniform(0, 800, 500)])
@@ -104,8 +111,10 @@ def test_roll_shifts_the_scan_angle_so_the_ground_moves_more_at_the_edge():
     nadir, edge = distortion.attitude_displacement(0.1, 705.0, scan_angle_deg=[0.0, 55.0])
     assert nadir == pytest.approx(705 * np.tan(np.radians(0.1)), rel=1e-4)
     assert edge == pytest.approx(6.0, abs=0.05)
-    flat_edge = distortion.attitude_displacement(0.1, 705.0, curved_earth=False, scan_angle_deg=55.0)
-    assert flat_edge == pytest.approx(705 * (np.tan(np.radians(55.1)) - np.tan(np.radians(55))), rel=1e-9)
+    flat_edge = distortion.attitude_displacement(0.1, 705.0, curved_earth=False,
+                                                 scan_angle_deg=55.0)
+    assert flat_edge == pytest.approx(705 * (np.tan(np.radians(55.1)) - np.tan(np.radians(55))),
+                                      rel=1e-9)
     assert float(flat_edge) == pytest.approx(3.75, abs=0.01)
 
 
@@ -123,10 +132,12 @@ def test_simulator_applies_roll_in_scan_angle_space():
     # (the old simulator shifted every column by the same number of pixels).
     shape = (10, 2000)
     plain = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0)
-    rolled = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0, roll_px=1.0)
+    rolled = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
+                                             roll_px=1.0)
     cols = 1000 + np.radians([0.0, 55.0]) * 705.0
     points = np.column_stack([cols, np.full(2, 5.0)])
-    moved = (rolled.on_grid(shape).inverse()(points) - plain.on_grid(shape).inverse()(points))[:, 0]
+    difference = rolled.on_grid(shape).inverse()(points) - plain.on_grid(shape).inverse()(points)
+    moved = difference[:, 0]
     expected = -distortion.attitude_displacement(-np.degrees(1 / 705.0), 705.0,
                                                  scan_angle_deg=[0.0, 55.0])
     np.testing.assert_allclose(moved, -expected, rtol=1e-9)
@@ -139,8 +150,9 @@ def test_simulator_applies_roll_in_scan_angle_space():
 
 def test_attitude_model_inverts_exactly():
     model = distortion.SystematicDistortion(skew_per_line=0.05, scale=1.02, roll_px=3, pitch_px=-2,
-                                            yaw_deg=1.0, yaw_rate_deg_per_line=0.002, view_altitude_km=705.0,
-                                            nadir_pixel_km=1.0, roll_deg=0.3, pitch_deg=-0.2)
+                                            yaw_deg=1.0, yaw_rate_deg_per_line=0.002,
+                                            view_altitude_km=705.0, nadir_pixel_km=1.0,
+                                            roll_deg=0.3, pitch_deg=-0.2)
     rng = np.random.default_rng(1)
     points = np.column_stack([rng.uniform(0, 2400, 500), rng.uniform(0, 100, 500)])
     model = model.on_grid((100, 2400))
@@ -150,7 +162,8 @@ def test_attitude_model_inverts_exactly():
 def test_skew_direction_is_west_on_both_passes():
     # Lecture: "deslocamento relativo das linhas para oeste". Size unchanged by the pass direction.
     size = distortion.earth_rotation_skew(-23.5, 113.0, 778.0, 98.5)
-    assert distortion.earth_rotation_skew(-23.5, 113.0, 778.0, 98.5, pass_direction="ascending") == size
+    assert distortion.earth_rotation_skew(-23.5, 113.0, 778.0, 98.5,
+                                          pass_direction="ascending") == size
     down = distortion.earth_rotation_offset(-23.5, 113.0, 778.0, 98.5, pass_direction="descending")
     up = distortion.earth_rotation_offset(-23.5, 113.0, 778.0, 98.5, pass_direction="ascending")
     for east, north in (down, up):
@@ -189,8 +202,10 @@ def test_correcting_with_imperfect_attitude_leaves_the_expected_shift():
     exact = distortion.correct(recorded, true_model, method="cubic")
     systematic = distortion.correct(recorded, known, method="cubic")
     inner = slice(80, 320)
-    _, exact_shift = gcp.measure_shifts(truth[inner, inner], exact[inner, inner], step=60, window=64)
-    _, shifts = gcp.measure_shifts(truth[inner, inner], systematic[inner, inner], step=60, window=64)
+    _, exact_shift = tiepoints.measure_shifts(truth[inner, inner], exact[inner, inner], step=60,
+                                              window=64)
+    _, shifts = tiepoints.measure_shifts(truth[inner, inner], systematic[inner, inner], step=60,
+                                         window=64)
     assert np.hypot(*exact_shift.T).max() < 0.5
     expected = 778.0 * np.tan(np.radians(0.01)) / 0.01
     np.testing.assert_allclose(np.abs(shifts[:, 0]), expected, atol=0.5)
@@ -207,7 +222,7 @@ def test_frame_outline_moves_the_last_line_west(pass_direction, sign):
     np.testing.assert_allclose(moved, distortion.earth_rotation_offset(-23.5, 113.0, 778.0, 98.5,
                                                                      pass_direction))
     assert moved[0] < 0
-    assert np.sign(north0[2] - north0[1]) == sign                        # south first on a descending pass
+    assert np.sign(north0[2] - north0[1]) == sign           # south first on a descending pass
 
 
 def test_a_folding_yaw_rate_raises_instead_of_returning_a_wrong_point():
@@ -239,10 +254,13 @@ def test_the_protocol_needs_the_grid_and_a_matching_image():
 @given(col=st.floats(0, 600), row=st.floats(0, 400), yaw=st.floats(-10, 10),
        rate=st.floats(-0.01, 0.01), skew=st.floats(-0.2, 0.2), scale=st.floats(0.8, 1.25),
        roll=st.floats(-0.5, 0.5), panoramic=st.booleans())
-def test_every_systematic_distortion_inverts_exactly(col, row, yaw, rate, skew, scale, roll, panoramic):
-    geometry = {"view_altitude_km": 705.0, "nadir_pixel_km": 1.0, "roll_deg": roll} if panoramic else {}
+def test_every_systematic_distortion_inverts_exactly(col, row, yaw, rate, skew, scale, roll,
+                                                     panoramic):
+    geometry = ({"view_altitude_km": 705.0, "nadir_pixel_km": 1.0, "roll_deg": roll}
+                if panoramic else {})
     model = distortion.SystematicDistortion(skew_per_line=skew, scale=scale, yaw_deg=yaw,
-                                            yaw_rate_deg_per_line=rate, shape=(400, 600), **geometry)
+                                            yaw_rate_deg_per_line=rate, shape=(400, 600),
+                                            **geometry)
     point = np.array([[col, row]])
     np.testing.assert_allclose(model.inverse()(model(point)), point, atol=1e-6)
     np.testing.assert_allclose(model(model.inverse()(point)), point, atol=1e-6)

@@ -15,7 +15,18 @@ import nbformat
 import numpy as np
 import pytest
 
-from rsgeo import distortion, exercises, gcp, matching, radiometry, resample, synthetic
+from rsgeo import (
+    accuracy,
+    distortion,
+    exercises,
+    gcp,
+    matching,
+    radiometry,
+    resample,
+    synthetic,
+    transforms,
+)
+from rsgeo.exercises import ex01_distortions, ex04_resampling
 
 ROOT = Path(__file__).resolve().parent.parent
 R, RE, OMEGA, GM = 6371.0, 6378.137, 7.292115e-5, 398600.4418
@@ -59,8 +70,8 @@ def georeferencing():
     pair = synthetic.distorted_pair(seed=2)
     gcps = pair.gcps
     points = gcps.map_xy[:5] - gcps.map_xy[:5].mean(axis=0)
-    predicted = gcp.fit_polynomial(gcps.map_xy, gcps.image_xy, order=1)(gcps.map_xy)
-    table = gcps.table(gcps.fit(order=2))
+    predicted = transforms.fit_polynomial(gcps.map_xy, gcps.image_xy, order=1)(gcps.map_xy)
+    table = gcps.table(gcps.fit(2))
     blunder = str(table["residual"].idxmax())
     keep = np.array(gcps.ids) != blunder
     good = gcp.GCPSet(gcps.map_xy[keep], gcps.image_xy[keep])
@@ -85,7 +96,7 @@ def design(kind="right"):
     return {"right": np.column_stack([ones, points]), "transposed": np.vstack([ones, points.T]),
             "no ones": points.copy(), "swapped": np.column_stack([ones, points[:, ::-1]]),
             "raw": np.column_stack([ones, gcps.map_xy[:5]]),
-            "degree 2": gcp.design_matrix(points, 2)}[kind]
+            "degree 2": transforms.design_matrix(points, 2)}[kind]
 
 
 WINDOW, DX, DY = np.array([[10.0, 20.0], [30.0, 60.0]]), 0.3, 0.6
@@ -112,7 +123,8 @@ def overshoot(kind="right"):
         return resample.interpolate(edge, cols, rows, "cubic").max() - edge.max()
     if kind == "scipy":
         from scipy.ndimage import map_coordinates
-        spline = map_coordinates(edge.astype(float), [rows - 0.5, cols - 0.5], order=3, mode="nearest")
+        spline = map_coordinates(edge.astype(float), [rows - 0.5, cols - 0.5], order=3,
+                                 mode="nearest")
         return spline.max() - edge.max()
     return {"right": right, "max": floats.max(), "negative": edge.max() - floats.max(),
             "fraction": right / 150, "percent": 100 * right / 150,
@@ -160,7 +172,8 @@ def filter_size(kind="right"):
     images, power = ((x, y), 1) if kind == "filtered twice" else ((pair.x_image, pair.y_image), 1)
     if kind == "r squared":
         power = 2
-    r = {s: radiometry.fit_gain_offset(*images, smooth=s if s > 1 else None).r for s in (1, 3, 5, 7, 9)}
+    r = {s: radiometry.fit_gain_offset(*images, smooth=s if s > 1 else None).r
+         for s in (1, 3, 5, 7, 9)}
     if kind == "largest r":
         return max(r, key=r.get)
     return next(s for s in r if r[s] ** power >= 0.8)
@@ -198,7 +211,8 @@ def decoded(kind="right"):
     return {"right": genes @ weights, "lsb first": genes @ weights[::-1],
             "0-based": genes @ weights - 1, "popcount": genes.sum(axis=1),
             "whole": int("".join(map(str, CHROMOSOME)), 2), "grouped": genes,
-            "bits": CHROMOSOME, "groups of 4": CHROMOSOME.reshape(-1, 4) @ 2 ** np.arange(3, -1, -1)
+            "bits": CHROMOSOME,
+            "groups of 4": CHROMOSOME.reshape(-1, 4) @ 2 ** np.arange(3, -1, -1)
             }[kind]
 
 
@@ -212,7 +226,8 @@ def suboptimal():
 
 # -- Each check: how to call it, its right answer, its expected value --------------------------
 
-SKEW_ARGS = dict(latitude_deg=-30.0, frame_length_km=113.0, altitude_km=778.0, inclination_deg=98.5)
+SKEW_ARGS = dict(latitude_deg=-30.0, frame_length_km=113.0, altitude_km=778.0,
+                 inclination_deg=98.5)
 
 CHECKS = {
     "skew": (lambda a: exercises.check_skew(a, **SKEW_ARGS), skew,
@@ -221,13 +236,15 @@ CHECKS = {
                lambda: 100 * (float(distortion.pixel_size(10.3, 786.0)[1]) - 1)),
     "swath": (lambda a: exercises.check_swath(a, 55.4, 833.0), swath,
               lambda: distortion.swath_width(55.4, 833.0)),
-    "design": (lambda a: exercises.check_design_matrix(a, georeferencing()[1], order=1), design, None),
+    "design": (lambda a: exercises.check_design_matrix(a, georeferencing()[1], order=1), design,
+               None),
     "rms": (lambda a: exercises.check_rms(a, georeferencing()[2], georeferencing()[0].image_xy),
-            rms_answer, lambda: gcp.rms_error(georeferencing()[2], georeferencing()[0].image_xy)),
+            rms_answer,
+            lambda: accuracy.rms_error(georeferencing()[2], georeferencing()[0].image_xy)),
     "blunder": (lambda a: exercises.check_blunder(a, georeferencing()[0], order=2),
                 lambda: georeferencing()[3]["residual"].idxmax(), None),
     "degree": (lambda a: exercises.check_degree_choice(a, *georeferencing()[4:]),
-               lambda: min((1, 2, 3), key=lambda n: gcp.fit_with_check_points(
+               lambda: min((1, 2, 3), key=lambda n: accuracy.fit_with_check_points(
                    georeferencing()[4].map_xy, georeferencing()[4].image_xy, n,
                    georeferencing()[5])[2]), None),
     "bilinear": (lambda a: exercises.check_bilinear(a, WINDOW, DX, DY), bilinear, bilinear),
@@ -238,9 +255,11 @@ CHECKS = {
     "offset": (lambda a: exercises.check_gain_offset(gain_offset()[0], a, *regression()[1:]),
                lambda: gain_offset()[1], lambda: gain_offset()[1]),
     "levels": (lambda a: exercises.check_truncation_levels(a, 0.885, 27.107), levels, None),
-    "filter": (lambda a: exercises.check_filter_size(a, regression()[0].x_image, regression()[0].y_image),
+    "filter": (lambda a: exercises.check_filter_size(a, regression()[0].x_image,
+                                                     regression()[0].y_image),
                filter_size, None),
-    "fitness": (lambda a: exercises.check_fitness(a, SOLUTION, REFERENCE, ADJUSTMENT), fitness, fitness),
+    "fitness": (lambda a: exercises.check_fitness(a, SOLUTION, REFERENCE, ADJUSTMENT), fitness,
+                fitness),
     "decode": (lambda a: exercises.check_decode(a, CHROMOSOME), decoded, None),
     "segment": (lambda a: exercises.check_suboptimal_segment(a, *suboptimal()),
                 lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]) + 1, None),
@@ -297,7 +316,8 @@ MISTAKES = [
     ("rms", lambda: rms_answer("dx only"), "Both components count"),
     ("rms", lambda: rms_answer("n - m"), "mean error"),
     ("blunder", lambda: georeferencing()[3]["residual"].idxmin(), "SMALLEST residual"),
-    ("blunder", lambda: georeferencing()[3]["residual"].nlargest(2).index[1], "drags its neighbours"),
+    ("blunder", lambda: georeferencing()[3]["residual"].nlargest(2).index[1],
+     "drags its neighbours"),
     ("degree", lambda: 3, "lowest RMS on the GCPs used in the fit"),
     ("bilinear", lambda: bilinear(dx=DY, dy=DX), "dx and dy are swapped"),
     ("bilinear", lambda: bilinear(dx=1 - DX, dy=1 - DY), "weights are reversed"),
@@ -337,11 +357,13 @@ MISTAKES = [
     ("decode", lambda: decoded("lsb first"), "least significant bit first"),
     ("decode", lambda: decoded("0-based"), "do not subtract 1"),
     ("decode", lambda: decoded("popcount"), "counted the 1 bits"),
-    ("segment", lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]), "count from 0"),
+    ("segment", lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]),
+     "count from 0"),
 ]
 
 
-@pytest.mark.parametrize("name, answer, hint", MISTAKES, ids=[f"{m[0]}-{m[2][:24]}" for m in MISTAKES])
+@pytest.mark.parametrize("name, answer, hint", MISTAKES,
+                         ids=[f"{m[0]}-{m[2][:24]}" for m in MISTAKES])
 def test_a_recognised_mistake_gets_its_hint(name, answer, hint):
     check, _, _ = CHECKS[name]
     verdict = check(answer())
@@ -465,7 +487,8 @@ WRONG_NUMBERS += [(name, lambda n=name: 1.37 * float(CHECKS[n][2]())) for name i
                   if CHECKS[name][2] is not None]
 
 
-@pytest.mark.parametrize("name, answer", WRONG_NUMBERS, ids=[f"{w[0]}-{i}" for i, w in enumerate(WRONG_NUMBERS)])
+@pytest.mark.parametrize("name, answer", WRONG_NUMBERS,
+                         ids=[f"{w[0]}-{i}" for i, w in enumerate(WRONG_NUMBERS)])
 def test_no_verdict_gives_the_expected_value_away(name, answer):
     check, _, expected = CHECKS[name]
     verdict = check(answer())
@@ -509,7 +532,8 @@ def test_degree_and_filter_verdicts_say_which_way():
 
 def test_html_verdicts_are_escaped():
     verdict = exercises.Verdict(False, "`a` < b", "use <b>")
-    assert "&lt; b" in verdict._repr_html_() and "<b>" not in verdict._repr_html_().split("Hint")[1]
+    assert ("&lt; b" in verdict._repr_html_()
+            and "<b>" not in verdict._repr_html_().split("Hint")[1])
 
 
 # -- What students read: no leaks, no dangling references -------------------------------------
@@ -546,10 +570,10 @@ def test_the_earth_rotation_offset_points_west_and_the_task_asks_one_quantity():
 def chapter_1_numbers():
     """What chapter 1 prints about its frames and sensors, recomputed from its inputs."""
     skews, growths, swaths = [], [], []
-    for frame in exercises._CHAPTER_1_FRAMES:
+    for frame in ex01_distortions._CHAPTER_1_FRAMES:
         east, north = distortion.earth_rotation_offset(*frame)
         skews += [abs(distortion.earth_rotation_skew(*frame)), -east, abs(north)]
-    for scan in exercises._CHAPTER_1_SCANS:
+    for scan in ex01_distortions._CHAPTER_1_SCANS:
         growths.append(100 * (float(distortion.pixel_size(*scan)[1]) - 1))
         swaths.append(distortion.swath_width(*scan))
     return {"skew": skews, "growth": growths, "swath": swaths}
@@ -578,9 +602,10 @@ def test_exercises_1_check_the_inputs_tested_here(check, arguments):
 def test_chapter_1_inputs_are_the_chapters_own():
     source = "\n".join(cell.source for cell in nbformat.read(
         ROOT / "book" / "01_systematic_distortions.ipynb", as_version=4).cells)
-    for latitude, frame, altitude, inclination in exercises._CHAPTER_1_FRAMES:
-        assert f"{altitude:g}" in source and f"{inclination:g}" in source and f"{frame:g}" in source
-    for angle, altitude in exercises._CHAPTER_1_SCANS:
+    for _latitude, frame, altitude, inclination in ex01_distortions._CHAPTER_1_FRAMES:
+        assert (f"{altitude:g}" in source and f"{inclination:g}" in source
+                and f"{frame:g}" in source)
+    for angle, altitude in ex01_distortions._CHAPTER_1_SCANS:
         assert f"{altitude:g}" in source and (f"{angle:g}" in source or angle == 29.06)
 
 
@@ -588,12 +613,13 @@ def test_chapter_4_grid_inputs_are_the_hrc_scene():
     from rsgeo import data
 
     hrc = data.load("cbers2b_hrc")
-    (shape, geotransform, resolutions), = exercises._CHAPTER_4_GRIDS
+    (shape, geotransform, resolutions), = ex04_resampling._CHAPTER_4_GRIDS
     assert tuple(hrc.array.shape[-2:]) == shape and hrc.transform.to_gdal() == geotransform
 
 
 def exercise_check_call(notebook, check):
-    """The positional and keyword arguments (as source) of the call of ``check`` in ``notebook``."""
+    """The positional and keyword arguments (as source) of the call of ``check`` in \
+``notebook``."""
     import ast
 
     cells = nbformat.read(ROOT / "exercises" / f"{notebook}.ipynb", as_version=4).cells
@@ -613,11 +639,11 @@ def test_task_4_5_asks_for_another_grid_than_chapter_4s_table():
     assert args == ["extent", "hrc_shape", "hrc_transform"] and keywords == {"resolution": "res"}
     source = "\n".join(c.source for c in exercise_text())
     assert "res = 25.0" in source and "-tr 25 25 -tap" in source
-    (shape, _geotransform, (chapter_resolution,)), = exercises._CHAPTER_4_GRIDS
+    (shape, _geotransform, (chapter_resolution,)), = ex04_resampling._CHAPTER_4_GRIDS
     right = resample.suggested_grid(shape, transform, resolution=25.0, tap=True)
     answer = (right[0].c, right[0].f, *right[1])
     assert exercises.check_grid_extent(answer, shape, transform, 25.0).ok
-    for copied in exercises._chapter_4_grids()[1:]:      # [0]: the scene's own grid
+    for copied in ex04_resampling._chapter_4_grids()[1:]:      # [0]: the scene's own grid
         verdict = exercises.check_grid_extent(copied, shape, transform, 25.0)
         assert not verdict.ok and "chapter 4's table" in verdict.hint, verdict
     # the chapter's own task (20 m) is not told it copied: its hints stay the usual ones
@@ -687,3 +713,100 @@ def test_summaries_do_not_state_the_answers():
     for name in ("growth", "swath", "overshoot"):
         assert not leaks(text, CHECKS[name][2]()), name
     assert not re.search(r"about 7 %", text)
+
+
+# -- Each check declares its inputs, its right answer and its mistakes ---------------------------
+
+def test_every_check_is_declared_with_its_inputs():
+    import inspect
+
+    checks = [name for name in exercises.__all__ if name.startswith("check_")]
+    assert sorted(exercises.declarations()) == sorted(checks)
+    for name in checks:
+        check = getattr(exercises, name)
+        declared = exercises.declaration(name)
+        assert check.declaration is declared and declared.check == name
+        parameters = list(inspect.signature(check).parameters)
+        # the inputs are the check's parameters after the answer (a quoted `name` aside)
+        answers = len(declared.answer.split(", "))
+        assert [p for p in parameters[answers:] if p != "name"] == list(declared.inputs), name
+        assert declared.general or declared.mistakes, name
+        assert all(isinstance(mistake.hint, str) and mistake.hint
+                   for mistake in declared.mistakes), name
+    with pytest.raises(ValueError, match="not a check"):
+        exercises.declaration("print")
+
+
+def test_a_declared_mistake_produces_the_answer_that_gets_its_hint():
+    # the declaration's right answer and each value-mistake, fed back to the check
+    declared = exercises.declaration("check_skew")
+    task = declared.task(**SKEW_ARGS)
+    assert task.right == pytest.approx(abs(distortion.earth_rotation_skew(**SKEW_ARGS)))
+    assert exercises.check_skew(task.right, **SKEW_ARGS).ok
+    for mistake in declared.mistakes:
+        for wrong in mistake.answers(task):
+            if np.isfinite(wrong) and not np.isclose(wrong, task.right, rtol=0.01):
+                verdict = exercises.check_skew(wrong, **SKEW_ARGS)
+                assert not verdict.ok and mistake.hint in verdict.hint, (wrong, verdict)
+
+
+def test_the_listed_mistakes_are_the_declared_ones():
+    for name, declared in exercises.declarations().items():
+        listed = exercises.recognised_mistakes(name)
+        assert [hint for kind, hint in listed if kind == "general"] == [declared.general]
+        assert {hint for kind, hint in listed if kind == "mistake"} == {
+            mistake.hint for mistake in declared.mistakes}
+
+
+# -- In Portuguese, a verdict is Portuguese throughout --------------------------------------------
+
+ENGLISH_WORDS = {"the", "is", "are", "of", "and", "not", "too", "with", "than", "by", "its", "it",
+                 "this", "that", "check", "needs", "number", "between", "times", "wrong", "yet",
+                 "one", "value", "values", "your", "you", "holds", "shape", "which", "from",
+                 "large", "small", "text", "string", "off", "about", "degree", "lowest", "does",
+                 "better", "matched", "segment", "distinct", "gives", "reaches", "window", "but",
+                 "lies", "there", "many", "few", "columns", "edge", "blunder", "residual",
+                 "matrix", "transposed", "missing", "maps", "points", "misses", "exactly",
+                 "where", "or", "written", "spaces", "lower", "case", "choose", "changes",
+                 "whole", "holding", "itself", "trailing", "comma", "tuple", "finite", "yes",
+                 "did", "function", "return", "without", "still", "task", "yours", "write"}
+
+
+def english_words(text):
+    text = re.sub(r"`[^`]*`|'[^']*'|[\w.]*[._][\w.]+", " ", text)      # code, quoted values
+    text = re.sub(r"\([^()]*\)", " ", text)                           # (col, row), (a, b, c, d)
+    return set(re.findall(r"[A-Za-z]+", text)) & ENGLISH_WORDS
+
+
+@pytest.fixture
+def portuguese(monkeypatch):
+    from rsgeo import _i18n
+
+    monkeypatch.setenv("RSGEO_LANG", "pt_BR")
+    monkeypatch.setattr(_i18n, "_chosen", None)
+
+
+@pytest.mark.parametrize("name, answer", [
+    ("gain", lambda: 1.37 * gain_offset()[0]),                 # "`gain` is too large ..."
+    ("skew", lambda: (2.5,)),                                   # _number: a tuple
+    ("skew", lambda: "2.5"),                                    # _number: a string
+    ("rms", lambda: np.array([1.0, 2.0])),                      # _number: an array
+    ("degree", lambda: 4),                                      # _one_of
+    ("degree", lambda: 2.5),                                    # _integer
+    ("blunder", lambda: 13),                                    # a position for an id
+    ("design", lambda: design("transposed")),
+    ("decode", lambda: decoded("groups of 4")),
+    ("filter", lambda: 2),
+    ("levels", lambda: levels("rounded")),
+    ("segment", lambda: 0),
+])
+def test_a_portuguese_verdict_holds_no_english(portuguese, name, answer):
+    verdict = CHECKS[name][0](answer())
+    text = repr(verdict)
+    assert text.startswith("Ainda não: ") and "\nDica: " in text, text
+    assert not english_words(text), (english_words(text), text)
+
+
+def test_the_english_word_finder_finds_english():
+    assert english_words("Ainda não: `gain` is grande demais") == {"is"}
+    assert not english_words("Ainda não: `gain` está grande demais, (col, row) e 'nearest'.")

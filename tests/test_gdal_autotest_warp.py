@@ -16,8 +16,9 @@ import affine
 import numpy as np
 import pytest
 
-from gdal_reference import affine_source, gdal_warp, gdalwarp_reproject
 from rsgeo.resample import WARP_METHODS, warp
+
+from gdal_reference import affine_source, gdal_warp, gdalwarp_reproject
 
 # -- autotest/alg/warp.py::test_warp_19 ------------------------------------------
 # "Test all data types and resampling methods for very small images to test edge

@@ -1,5 +1,6 @@
 """The grader (exercises/grade.py) on planted submissions made from the course's own notebook:
-each kind of submission an instructor meets gets the verdict it deserves, and none stops the run."""
+each kind of submission an instructor meets gets the verdict it deserves, and none stops \
+the run."""
 
 import csv
 import subprocess

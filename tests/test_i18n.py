@@ -16,7 +16,6 @@ import os
 import re
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 import yaml
@@ -90,7 +89,8 @@ def relative(path):
 
 def test_every_page_has_a_catalogue():
     toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
-    pages = [toc["root"]] + [chapter["file"] for part in toc["parts"] for chapter in part["chapters"]]
+    pages = [toc["root"]] + [chapter["file"] for part in toc["parts"]
+                             for chapter in part["chapters"]]
     missing = [page for page in pages if not (CATALOGUES / (page + ".po")).exists()]
     assert not missing, f"pages without a catalogue (run python locales/update.py): {missing}"
 
@@ -102,9 +102,9 @@ def test_catalogue_is_completely_translated(po):
     fuzzy = [message.id for message in messages if message.fuzzy]
     empty = [message.id for message in messages if not message.string]
     assert not fuzzy and not empty, (
-        f"{relative(po)}: {len(empty)} of {len(messages)} entries untranslated, {len(fuzzy)} fuzzy "
-        f"(translate them; fuzzy ones after checking the suggestion). First: "
-        f"{[str(text)[:70] for text in (empty + fuzzy)[:3]]}")
+        f"{relative(po)}: {len(empty)} of {len(messages)} entries untranslated, "
+        f"{len(fuzzy)} fuzzy (translate them; fuzzy ones after checking the suggestion). "
+        f"First: {[str(text)[:70] for text in (empty + fuzzy)[:3]]}")
 
 
 @pytest.mark.parametrize("po", ALL_PO, ids=relative)
@@ -121,8 +121,8 @@ def test_translations_keep_the_code_maths_and_references(po):
     # inline code, roles ({cite}`...`, {py:class}`...`), maths and format fields are not translated
     def kept(text):
         # a role's link text may be translated, its target not: {ref}`text <target>` -> target
-        found = re.findall(r"\{[\w:-]+\}`[^`]*`|(?<!\})`[^`]*`|\$[^$]+\$|\{\w*(?:![rsa])?(?::[^}]*)?\}",
-                           text)
+        found = re.findall(r"\{[\w:-]+\}`[^`]*`|(?<!\})`[^`]*`|"
+                           r"\$[^$]+\$|\{\w*(?:![rsa])?(?::[^}]*)?\}", text)
         # a glue role names its notebook in a translation ({glue:text}`04_resampling.ipynb::rms`):
         # myst-nb resolves a translated paragraph's glue only in that form (DESIGN.md)
         found = [re.sub(r"^(\{glue(?::\w+)?\}`)[\w.-]+\.ipynb::", r"\1", item) for item in found]
@@ -138,10 +138,12 @@ def test_translations_keep_the_code_maths_and_references(po):
 GLOSSARY_TERMS = [
     (r"georeferenc", r"georreferenc"), (r"resampl", r"reamostr"),
     (r"check[- ]points?", r"pontos? de verificação"), (r"control points?", r"pontos? de controle"),
-    (r"nearest[- ]neighbou?r", r"vizinhos? mais próximos?"), (r"cubic convolution", r"convolução cúbica"),
+    (r"nearest[- ]neighbou?r", r"vizinhos? mais próximos?"),
+    (r"cubic convolution", r"convolução cúbica"),
     (r"relational mesh", r"malhas? relaciona"), (r"\bfitness\b", r"aptidão"),
     (r"\bresiduals?\b", r"resíduo"), (r"genetic algorithm", r"algoritmos? genétic"),
-    (r"output grid", r"grades? de saída"), (r"tie points?", r"pontos? de ligação|pontos? homólogos?"),
+    (r"output grid", r"grades? de saída"),
+    (r"tie points?", r"pontos? de ligação|pontos? homólogos?"),
     (r"orthorectif", r"ortorretific"), (r"relief displacement", r"deslocamento devido ao relevo"),
     (r"\bsegments?\b", r"segmento"), (r"\bmosaic", r"mosaic"), (r"\bregistration\b", r"registro"),
     (r"\bgain\b(?!·)", r"ganho"),
@@ -172,7 +174,8 @@ def templates(tmp_path_factory):
     folder = tmp_path_factory.mktemp("gettext") / "pot"
     run = subprocess.run([sys.executable, str(ROOT / "locales" / "update.py"), "--templates",
                           str(folder)], cwd=ROOT, capture_output=True, text=True, timeout=900)
-    assert run.returncode == 0, f"the gettext build failed:\n{run.stdout[-2000:]}{run.stderr[-2000:]}"
+    assert run.returncode == 0, (
+        f"the gettext build failed:\n{run.stdout[-2000:]}{run.stderr[-2000:]}")
     return folder
 
 
@@ -187,16 +190,17 @@ def test_catalogues_match_the_current_english_text(templates):
         wanted = {message.id for message in entries(pot)}
         held = {message.id for message in entries(po)} if po.exists() else set()
         if wanted != held:
-            stale[str(name)] = {"new English text": [text[:70] for text in sorted(wanted - held)][:3],
-                                "no longer in the book": [text[:70] for text in sorted(held - wanted)][:3]}
+            stale[str(name)] = {
+                "new English text": [text[:70] for text in sorted(wanted - held)][:3],
+                "no longer in the book": [text[:70] for text in sorted(held - wanted)][:3]}
     assert not stale, ("catalogues out of date (python locales/update.py, then translate):\n"
                        + json.dumps(stale, indent=1, ensure_ascii=False))
 
 
 def test_docstrings_stay_out_of_the_api_catalogue(templates):
-    from rsgeo import gcp
+    from rsgeo import transforms
 
-    first_line = gcp.fit_polynomial.__doc__.strip().splitlines()[0]
+    first_line = transforms.fit_polynomial.__doc__.strip().splitlines()[0]
     ids = {message.id for message in entries(templates / "book" / "api.pot")}
     assert "API reference" in ids                      # the page's own prose is there
     assert not any(first_line in text for text in ids), "a docstring reached the catalogue"
@@ -220,26 +224,20 @@ def test_the_portuguese_config_is_the_english_one_with_the_language_set():
 # -- rsgeo in Portuguese -------------------------------------------------------------------------
 
 def test_rsgeo_catalogue_holds_every_message_of_the_code():
-    # _() / N_() anywhere in rsgeo, and every hint sentence of the exercise checks
+    # _() / N_() anywhere in rsgeo: the exercise checks' hints are N_() in their declarations
     found = set(update.rsgeo_messages())
     held = {message.id for message in entries(RSGEO_PO)}
     assert found == held, (f"rsgeo.po out of date (python locales/update.py, then translate): new "
                            f"{sorted(found - held)[:3]}, gone {sorted(held - found)[:3]}")
 
 
-def test_hint_sentences_are_found_and_fragments_left_out(tmp_path):
-    source = tmp_path / "checks.py"
-    source.write_text('''"""Module docstring is not a message at all."""
-HINT = ("np.cos takes radians: convert "
-        "with np.radians first.")
-def check(x):
-    """Not a message either, though a sentence."""
-    scale = "the image's range (its step height)"
-    return Verdict(False, f"`x` is {x}, too large by far.", "Square, average, then root.")
-''')
-    assert update.verdict_sentences(source) == {
-        "np.cos takes radians: convert with np.radians first.": 2,
-        "Square, average, then root.": 7}
+def test_every_declared_hint_is_a_message_of_the_catalogue():
+    from rsgeo import exercises
+
+    found = set(update.rsgeo_messages())
+    hints = {hint for name in exercises.declarations()
+             for _kind, hint in exercises.recognised_mistakes(name)}
+    assert len(hints) > 100 and hints <= found, sorted(hints - found)[:3]
 
 
 def test_rsgeo_mo_is_the_compiled_po():
@@ -282,7 +280,8 @@ def test_check_hints_and_messages_speak_the_chosen_language(portuguese, monkeypa
     metres = check_skew(12.6 * 1000, 0.0, 185.0, 705.0, 98.2)          # a known mistake's hint
     assert repr(metres) == ("Ainda não: `skew_km` está mais de 100 vezes maior do que deveria.\n"
                             "Dica: Isso parece estar em metros; a verificação quer quilômetros.")
-    assert "grande demais, com erro de 10 a 50 %" in repr(check_skew(16.4, 0.0, 185.0, 705.0, 98.2))
+    assert "grande demais, com erro de 10 a 50 %" in repr(
+        check_skew(16.4, 0.0, 185.0, 705.0, 98.2))
     with pytest.raises(ExerciseNotSolved, match="esta tarefa é sua"):
         check_skew(..., 0.0, 185.0, 705.0, 98.2)
     monkeypatch.setenv("RSGEO_LANG", "en")                   # a check run in English answers in it
@@ -315,7 +314,9 @@ def test_figure_labels_speak_the_chosen_language_and_pass_the_audit(portuguese):
     import numpy as np
     from affine import Affine
 
-    from rsgeo.plot import draw_neighbour_weights, figure_problems, show_image
+    from rsgeo.plot import draw_neighbour_weights, show_image
+
+    from figure_audit import figure_problems
 
     figure, axes = plt.subplots(1, 3)
     show_image(axes[0], np.zeros((4, 6)), title="pixels")
@@ -342,15 +343,16 @@ def test_an_unknown_language_is_refused(setting, monkeypatch):
     else:                                                   # empty: the default, English
         monkeypatch.setenv("RSGEO_LANG", setting)
         assert _i18n.translate("Correct") == "Correct"
-    with pytest.raises(ValueError, match="language name"):
+    with pytest.raises(TypeError, match="language name"):        # a wrong type
         _i18n.set_language(3)
 
 
 # -- Notebooks to download in Portuguese ---------------------------------------------------------
 
-@pytest.mark.parametrize("po", [po for po in BOOK_PO
-                                if (ROOT / po.relative_to(CATALOGUES)).with_suffix(".ipynb").exists()],
-                         ids=relative)
+@pytest.mark.parametrize(
+    "po", [po for po in BOOK_PO
+           if (ROOT / po.relative_to(CATALOGUES)).with_suffix(".ipynb").exists()],
+    ids=relative)
 def test_every_message_is_found_in_its_notebook(po):
     # the download's translation replaces each msgid in the Markdown cells: each must be found
     notebook = json.loads((ROOT / po.relative_to(CATALOGUES)).with_suffix(".ipynb").read_text())
@@ -379,7 +381,8 @@ def test_a_translated_notebook_reads_portuguese_and_sets_the_language():
 
 
 def test_a_translated_title_that_starts_like_a_list_stays_a_title():
-    assert i18n_book.escape_list_start("1. Distorções sistemáticas") == "1\\. Distorções sistemáticas"
+    assert (i18n_book.escape_list_start("1. Distorções sistemáticas")
+            == "1\\. Distorções sistemáticas")
     assert i18n_book.escape_list_start("- item") == "\\- item"
     for kept in ("2b. Sistemas", "1.5 m de erro", "*ênfase*", "Texto. 1. Outro"):
         assert i18n_book.escape_list_start(kept) == kept
@@ -396,7 +399,8 @@ def test_language_switch_links_are_relative():
 def _built():
     for folder in (ENGLISH_BUILD, PORTUGUESE_BUILD):
         if not (folder / "book" / "intro.html").exists():
-            return f"{relative(folder)} is not built (the README's first command builds both books)"
+            return (f"{relative(folder)} is not built "
+                    "(the README's first command builds both books)")
     return None
 
 
@@ -414,8 +418,8 @@ def paragraphs(path):
     soup = BeautifulSoup(path.read_text(encoding="utf-8"), "html.parser")
     article = soup.find("article") or soup
     for unread in article.select("div.cell_output, div.output, pre, div.highlight, dl.py, "
-                                 "table.autosummary, .citation, div.docutils.container, .rsgeo-docstring, "
-                                 ".rsgeo-language-switch, script, style"):
+                                 "table.autosummary, .citation, div.docutils.container, "
+                                 ".rsgeo-docstring, .rsgeo-language-switch, script, style"):
         unread.decompose()
     texts = (" ".join(element.get_text(" ").split())
              for element in article.find_all(["p", "li", "h1", "h2", "h3", "td", "dt", "dd"]))
@@ -432,7 +436,8 @@ def test_every_page_is_built_in_portuguese_with_its_language_and_switch():
         html = portuguese.read_text(encoding="utf-8")
         assert '<html lang="pt-BR"' in html, page
         depth = page.count("/")
-        assert f'href="{"../" * depth}../../../html/{page}"' in html, f"{page}: no switch to English"
+        assert f'href="{"../" * depth}../../../html/{page}"' in html, (
+            f"{page}: no switch to English")
         target = (portuguese.parent / ("../" * depth + "../../../html/" + page)).resolve()
         assert target == english.resolve() and target.exists()
         back = (english.parent / ("../" * depth + "../pt_BR/_build/html/" + page)).resolve()
@@ -443,7 +448,8 @@ def test_every_page_is_built_in_portuguese_with_its_language_and_switch():
 
 @built
 def test_sphinx_exercise_labels_and_the_first_page_note_are_portuguese():
-    exercise = (PORTUGUESE_BUILD / "exercises" / "ex01_distortions.html").read_text(encoding="utf-8")
+    exercise = (PORTUGUESE_BUILD / "exercises" / "ex01_distortions.html").read_text(
+        encoding="utf-8")
     assert "Exercício" in exercise
     # the exercises ran again in Portuguese (i18n_execute_in_language): the checks answer in it
     assert "<strong>Correto:</strong>" in exercise and "<strong>Correct:" not in exercise
@@ -459,12 +465,15 @@ def test_sphinx_exercise_labels_and_the_first_page_note_are_portuguese():
 
 @built
 def test_the_table_of_contents_parts_are_portuguese():
-    captions = [part["caption"] for part in yaml.safe_load((ROOT / "_toc.yml").read_text())["parts"]]
-    translations = {message.id: message.string for message in entries(CATALOGUES / "book" / "intro.po")}
+    captions = [part["caption"]
+                for part in yaml.safe_load((ROOT / "_toc.yml").read_text())["parts"]]
+    translations = {message.id: message.string
+                    for message in entries(CATALOGUES / "book" / "intro.po")}
     html = (PORTUGUESE_BUILD / "book" / "04_resampling.html").read_text(encoding="utf-8")
     shown = re.findall(r'caption-text">([^<]*)<', html)
     assert shown == [translations.get(caption) or caption for caption in captions]
-    assert not set(shown) & {caption for caption in captions if translations.get(caption) != caption}
+    assert not set(shown) & {caption for caption in captions
+                             if translations.get(caption) != caption}
 
 
 @built

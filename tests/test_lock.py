@@ -1,10 +1,10 @@
 """requirements.txt is a lock of requirements.in's ranges, made by the command the README gives,
 and the environment the tests run in is that lock."""
 
-import tomllib
 from importlib import metadata
 
 import pytest
+import tomllib
 from packaging.markers import Marker
 from packaging.requirements import Requirement
 from packaging.utils import canonicalize_name

@@ -1,4 +1,4 @@
-"""rsgeo.matching, rsgeo.experiments and rsgeo.regions: the GA paper's fitness, search and registration."""
+"""rsgeo.matching and rsgeo.regions: the GA paper's fitness, search and registration."""
 
 import itertools
 import subprocess
@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rsgeo import experiments, matching, regions, synthetic
+from rsgeo import matching, regions, synthetic
 
 
 def test_fitness_by_hand_on_three_segments():
@@ -21,7 +21,8 @@ def test_fitness_by_hand_on_three_segments():
     d13 = np.hypot(5, 390)        # reference 1-3 <- adjustment 1-2
     d23 = np.hypot(300, 385)      # reference 2-3 <- adjustment 3-2
     fe = 1 - (abs(300 - d12) + abs(400 - d13) + abs(500 - d23)) / 1200
-    assert matching.fitness([1, 3, 2], reference, adjustment) == pytest.approx(0.5 * 0.95 + 0.5 * fe)
+    assert matching.fitness([1, 3, 2], reference, adjustment) == pytest.approx(
+        0.5 * 0.95 + 0.5 * fe)
     assert matching.fitness([1, 3, 2], reference, adjustment, alpha=1.0) == pytest.approx(0.95)
 
 
@@ -41,7 +42,8 @@ def test_chromosome_round_trip():
 
 @settings(max_examples=200, deadline=None)
 @given(st.integers(1, 16).flatmap(
-    lambda bits: st.tuples(st.just(bits), st.lists(st.integers(0, 2**bits - 1), min_size=1, max_size=20))))
+    lambda bits: st.tuples(st.just(bits),
+                           st.lists(st.integers(0, 2**bits - 1), min_size=1, max_size=20))))
 def test_decode_undoes_encode(bits_and_labels):
     bits, labels = bits_and_labels
     chromosome = matching.encode(labels, bits=bits)
@@ -51,7 +53,8 @@ def test_decode_undoes_encode(bits_and_labels):
 
 @settings(max_examples=200, deadline=None)
 @given(st.integers(1, 16).flatmap(
-    lambda bits: st.tuples(st.just(bits), st.lists(st.integers(0, 1), min_size=bits, max_size=bits * 12)
+    lambda bits: st.tuples(st.just(bits),
+                           st.lists(st.integers(0, 1), min_size=bits, max_size=bits * 12)
                            .filter(lambda chromosome: len(chromosome) % bits == 0))))
 def test_encode_undoes_decode(bits_and_chromosome):
     bits, chromosome = bits_and_chromosome
@@ -86,13 +89,14 @@ def test_compiled_fitness_agrees_with_the_numpy_one_term_by_term():
 
 
 def test_exhaustive_search_is_the_maximum_over_every_solution():
-    # against a plain loop over itertools.product, not against the truth (the optimum need not be it)
+    # against a plain loop over itertools.product, not against the truth (the optimum need not
+    # be it)
     reference, adjustment, _ = synthetic.synthetic_meshes(4, seed=3, shrink=(1, 0.31))
     every = list(itertools.product(range(5), repeat=4))
     for variant in matching.VARIANTS:
         scores = [matching.fitness(s, reference, adjustment, 0.7, variant) for s in every]
-        best = matching.exhaustive_match(reference, adjustment, 0.7, one_to_one=False, variant=variant,
-                                         batch=37)
+        best = matching.exhaustive_match(reference, adjustment, 0.7, one_to_one=False,
+                                         variant=variant, batch=37)
         assert best.evaluations == 5**4 and best.optimal
         assert best.fitness == pytest.approx(max(scores), abs=1e-12)
         np.testing.assert_array_equal(best.solution, every[int(np.argmax(scores))])
@@ -105,11 +109,14 @@ def test_branch_and_bound_finds_the_exhaustive_optimum(n, shrink):
     for seed in range(6):
         reference, adjustment, truth = synthetic.synthetic_meshes(n, seed=seed, shrink=shrink)
         for variant, alpha in itertools.product(matching.VARIANTS, (0.3, 0.5, 0.9)):
-            every = matching.exhaustive_match(reference, adjustment, alpha, one_to_one=False, variant=variant)
+            every = matching.exhaustive_match(reference, adjustment, alpha, one_to_one=False,
+                                              variant=variant)
             for incumbent in (None, truth):
-                bound = matching.optimum_match(reference, adjustment, alpha, variant, incumbent=incumbent)
+                bound = matching.optimum_match(reference, adjustment, alpha, variant,
+                                               incumbent=incumbent)
                 assert bound.optimal
-                assert bound.fitness == pytest.approx(every.fitness, abs=1e-12), (seed, variant, alpha)
+                assert bound.fitness == pytest.approx(every.fitness, abs=1e-12), (
+                    seed, variant, alpha)
                 assert bound.evaluations < (n + 1) ** n          # it cut branches
 
 
@@ -119,7 +126,8 @@ def test_branch_and_bound_at_twelve_segments_and_its_node_limit():
     assert best.optimal and best.fitness >= matching.fitness(truth, reference, adjustment) - 1e-12
     # a random solution is never better than the certified optimum
     rng = np.random.default_rng(1)
-    assert matching.fitness_batch(rng.integers(0, 13, (5000, 12)), reference, adjustment).max() <= best.fitness
+    assert (matching.fitness_batch(rng.integers(0, 13, (5000, 12)), reference, adjustment).max()
+            <= best.fitness)
     cut = matching.optimum_match(reference, adjustment, node_limit=50)
     assert not cut.optimal and cut.evaluations == 50
 
@@ -136,7 +144,8 @@ def ga_optimum_rate(n, seeds, **options):
         optimum = matching.optimum_match(reference, adjustment, incumbent=truth)
         assert optimum.optimal
         result = matching.genetic_match(reference, adjustment, seed=seed, **options)
-        found, best = matching._fitness_numpy([result.solution, optimum.solution], reference, adjustment)
+        found, best = matching._fitness_numpy([result.solution, optimum.solution], reference,
+                                              adjustment)
         reached += found >= best - 1e-9
     return reached / len(seeds)
 
@@ -167,33 +176,38 @@ def test_mutation_changes_each_gene_at_its_rate(encoding):
         changed = np.mean(children != parents)
         # an integer gene reset to a random label keeps its value 1 time in 9
         expected = rate if encoding == "binary" else rate * 8 / 9
-        assert abs(changed - expected) < 4 * np.sqrt(expected * (1 - expected) / parents.size) + 1e-12
+        assert (abs(changed - expected)
+                < 4 * np.sqrt(expected * (1 - expected) / parents.size) + 1e-12)
         if encoding == "integer":
             assert children.min() >= 0 and children.max() <= 8
 
 
 def test_elitism_keeps_each_generation_best_and_without_it_the_best_falls():
     reference, adjustment, _ = synthetic.synthetic_meshes(8, seed=1)
-    kept = matching.genetic_match(reference, adjustment, seed=4, generations=60, selection="roulette")
+    kept = matching.genetic_match(reference, adjustment, seed=4, generations=60,
+                                  selection="roulette")
     best = np.array([h["generation_best"] for h in kept.history])
     assert len(best) == 60 and (np.diff(best) >= 0).all()
     assert kept.fitness == best[-1] == max(h["best"] for h in kept.history)
-    lost = matching.genetic_match(reference, adjustment, seed=4, generations=60, selection="roulette",
-                                  elite_fraction=0.0)
+    lost = matching.genetic_match(reference, adjustment, seed=4, generations=60,
+                                  selection="roulette", elite_fraction=0.0)
     assert (np.diff([h["generation_best"] for h in lost.history]) < 0).any()
 
 
 def test_ga_is_seeded_and_seeds_differ():
     reference, adjustment, _ = synthetic.synthetic_meshes(6, seed=1)
-    runs = [matching.genetic_match(reference, adjustment, seed=seed, generations=5) for seed in (4, 4, 5)]
-    np.testing.assert_array_equal(runs[0].history[0]["best_solution"], runs[1].history[0]["best_solution"])
+    runs = [matching.genetic_match(reference, adjustment, seed=seed, generations=5)
+            for seed in (4, 4, 5)]
+    np.testing.assert_array_equal(runs[0].history[0]["best_solution"],
+                                  runs[1].history[0]["best_solution"])
     assert [h["mean"] for h in runs[0].history] == [h["mean"] for h in runs[1].history]
     assert [h["mean"] for h in runs[0].history] != [h["mean"] for h in runs[2].history]
 
 
 def test_ga_stops_when_the_best_stalls():
     reference, adjustment, _ = synthetic.synthetic_meshes(5, seed=0)
-    run = matching.genetic_match(reference, adjustment, seed=0, generations=1000, stall_generations=25)
+    run = matching.genetic_match(reference, adjustment, seed=0, generations=1000,
+                                 stall_generations=25)
     best = [h["best"] for h in run.history]
     last_improvement = int(np.argmax(np.array(best) >= best[-1]))
     assert len(run.history) == last_improvement + 26 < 1000
@@ -203,23 +217,9 @@ def test_ga_stops_when_the_best_stalls():
 def test_matching_does_not_import_the_synthetic_data_or_the_harness():
     code = ("import sys, rsgeo.matching; "
             "print(sorted(m for m in sys.modules if m.startswith('rsgeo.')))")
-    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                            check=True)
     assert "rsgeo.synthetic" not in loaded.stdout and "rsgeo.experiments" not in loaded.stdout
-
-
-def test_success_table_counts_optimum_and_truth():
-    table = experiments.success_table(sizes=(5,), seeds=range(3))
-    assert list(table.index.get_level_values("matcher")) == list(experiments.MATCHERS)
-    assert (table["runs"] == 3).all()
-    assert table["optimum"].iloc[0].startswith("max FA over all 6^5 solutions by branch and bound: "
-                                               "certified in 3 of 3 seeds")
-    assert (table["optimum reached (%)"] >= table["exact matches (%)"]).all()
-    assert (table["worst s/run"] >= table["mean s/run"]).all()
-    # a matcher that returns the zero solution reaches nothing
-    nothing = experiments.success_table(sizes=(5,), seeds=range(2), matchers={
-        "none": lambda ref, adj, alpha, seed: matching.MatchResult(np.zeros(len(adj), int), 0.0, [], 0)})
-    assert nothing.loc[(5, "none"), "optimum reached (%)"] == 0
-    assert nothing.loc[(5, "none"), "exact matches (%)"] == 0
 
 
 def test_registration_of_the_synthetic_two_date_pair():
@@ -227,7 +227,8 @@ def test_registration_of_the_synthetic_two_date_pair():
     reference = regions.forest_segments(land.reference, threshold=185)
     adjustment = regions.forest_segments(land.adjustment, threshold=185)
     registration = matching.register_by_regions(reference, adjustment, land.reference_transform,
-                                                reference_pixel=20, adjustment_pixel=30, seed=1, tolerance=1.0)
+                                                reference_pixel=20, adjustment_pixel=30, seed=1,
+                                                tolerance=1.0)
     assert registration.rms_kept < 1.0
     # and against the truth we built in, not just the GCPs' own residuals
     map_xy = registration.map_xy
@@ -246,8 +247,6 @@ def test_registration_of_the_synthetic_two_date_pair():
     (lambda: matching.fitness([1, 2, 3], MESH, MESH, variant="tight"), "unknown variant"),
     (lambda: matching.exhaustive_match(MESH, MESH, variant="tight"), "unknown variant"),
     (lambda: matching.true_matching([[0, 0]], [[1, 1]], tolerance=-1), "tolerance must be"),
-    (lambda: experiments.fitness_comparison(sizes=(9,), seeds=[0]), "sizes must be 3 to 7"),
-    (lambda: experiments.success_table(sizes=(2,), seeds=[0]), "sizes of 3 or more"),
     (lambda: matching.optimum_match(MESH, MESH, variant="tight"), "unknown variant"),
     (lambda: matching.optimum_match(MESH, MESH, incumbent=[1, 2]), "one label per adjustment"),
 ])
@@ -307,7 +306,8 @@ def test_compact_fitness_keeps_a_forest_split_in_two():
     assert spread[0] == pytest.approx(0.86, abs=0.01)
     np.testing.assert_allclose(spread[1:], 1.0)
     for variant in matching.VARIANTS:
-        assert matching.fitness([1, 1, 2, 3], reference, split, variant=variant) == pytest.approx(1.0)
+        assert (matching.fitness([1, 1, 2, 3], reference, split, variant=variant)
+                == pytest.approx(1.0))
 
 
 def test_group_spread_of_two_touching_disks_is_one_and_a_half():
@@ -322,14 +322,16 @@ def test_both_variants_agree_without_many_to_one_groups():
     rng = np.random.default_rng(0)
     solutions = np.array([rng.permutation(6) + 1 for _ in range(50)] + [truth])
     np.testing.assert_allclose(matching.fitness_batch(solutions, reference, adjustment),
-                               matching.fitness_batch(solutions, reference, adjustment, variant="compact"))
+                               matching.fitness_batch(solutions, reference, adjustment,
+                                                      variant="compact"))
 
 
 def test_compact_fitness_finds_the_truth_where_the_paper_piles_onto_a_shrunk_segment():
     # the chapter's 31 % case at a = 0.7: the paper's optimum piles two segments onto one
     reference, shrunk, truth = synthetic.synthetic_meshes(5, seed=0, shrink=(2, 0.31))
     paper = matching.exhaustive_match(reference, shrunk, 0.7, one_to_one=False)
-    compact = matching.exhaustive_match(reference, shrunk, 0.7, one_to_one=False, variant="compact")
+    compact = matching.exhaustive_match(reference, shrunk, 0.7, one_to_one=False,
+                                        variant="compact")
     assert not np.array_equal(paper.solution, truth)
     assert len(np.unique(paper.solution)) < len(truth)         # a many-to-one group
     np.testing.assert_array_equal(compact.solution, truth)
@@ -365,11 +367,15 @@ def real_scene():
     centre = ccd.transform @ (ccd.shape[1] / 2, ccd.shape[0] / 2)
     moved = (affine.Affine.translation(centre[0] + 150, centre[1] - 90) @ affine.Affine.rotation(5)
              @ affine.Affine(30, 0, -106 * 30, 0, -30, 106 * 30))
-    image = resample.warp(vegetation, ~ccd.transform, (212, 212), moved, method="bilinear", nodata=-1.0)
-    reference = regions.keep_largest(regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
-    adjustment = regions.keep_largest(regions.forest_segments(image, threshold=0.55, min_area=11), 8)
+    image = resample.warp(vegetation, ~ccd.transform, (212, 212), moved, method="bilinear",
+                          nodata=-1.0)
+    reference = regions.keep_largest(
+        regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
+    adjustment = regions.keep_largest(
+        regions.forest_segments(image, threshold=0.55, min_area=11), 8)
     to_reference = ~ccd.transform @ moved
-    mapped = np.column_stack(to_reference @ (adjustment.centroids[:, 0], adjustment.centroids[:, 1]))
+    mapped = np.column_stack(
+        to_reference @ (adjustment.centroids[:, 0], adjustment.centroids[:, 1]))
     return ccd, reference, adjustment, mapped
 
 
@@ -383,8 +389,9 @@ def test_real_scene_the_paper_piles_and_the_compact_fitness_does_not():
     piled = [1, 2, 3, 4, 5, 8, 1, 1]
     assert matching.fitness(piled, reference_mesh, adjustment_mesh) > matching.fitness(
         truth, reference_mesh, adjustment_mesh)
-    assert matching.fitness(piled, reference_mesh, adjustment_mesh, variant="compact") < matching.fitness(
-        truth, reference_mesh, adjustment_mesh, variant="compact")
+    assert (matching.fitness(piled, reference_mesh, adjustment_mesh, variant="compact")
+            < matching.fitness(truth, reference_mesh, adjustment_mesh,
+                               variant="compact"))
     paper = matching.register_by_regions(reference, adjustment, ccd.transform, 20, 30, seed=0)
     compact = matching.register_by_regions(reference, adjustment, ccd.transform, 20, 30, seed=0,
                                            variant="compact")
@@ -399,8 +406,9 @@ def test_evolution_frame_spans_the_whole_run_from_the_first_generation():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from rsgeo.plot import figure_problems
     from rsgeo.widgets import draw_evolution_frame
+
+    from figure_audit import figure_problems
 
     reference, adjustment, truth = synthetic.synthetic_meshes(5, seed=1)
     run = matching.genetic_match(reference, adjustment, seed=0, generations=20)

@@ -1,5 +1,6 @@
 """Every notebook of the book and the exercises runs top to bottom, with readable figures;
-committed notebooks are clean, short-lined, and assert the numbers their prose states."""
+chapters assert the numbers their prose states. (Notebooks stored without outputs and with short
+code lines: nbstripout and nbQA-ruff check that, run by pre-commit.)"""
 
 import os
 import shutil
@@ -21,43 +22,32 @@ def test_there_are_notebooks():
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.name)
-def test_committed_without_outputs(path):
-    notebook = nbformat.read(path, as_version=4)
-    for cell in notebook.cells:
-        if cell.cell_type == "code":
-            assert not cell.outputs and cell.execution_count is None, f"{path.name} holds outputs: clear them"
-
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.name)
 def test_notebook_runs(path):
     notebook = executed_notebook(path)          # the book build's execution when it is current
     # every figure it renders (shown, animated, drawn by a widget) is readable on its own
-    assert notebook.metadata["figure_problems"] == [], "\n".join(notebook.metadata["figure_problems"])
+    problems = notebook.metadata["figure_problems"]
+    assert problems == [], "\n".join(problems)
     for cell in notebook.cells:
         for output in cell.get("outputs", []):
-            assert output.output_type != "error", f"{path.name}: {output.get('ename')}: {output.get('evalue')}"
-    if os.environ.get("CI") and BOOK_CACHE.exists():     # CI executes each notebook once: in the build
+            assert output.output_type != "error", (
+                f"{path.name}: {output.get('ename')}: {output.get('evalue')}")
+    # CI executes each notebook once: in the build
+    if os.environ.get("CI") and BOOK_CACHE.exists():
         assert notebook.metadata.get("executed_by") == "the book build", f"{path.name} ran twice"
     if path.parent.name == "exercises":
-        verdicts = [output["data"]["text/plain"] for cell in notebook.cells for output in cell.get("outputs", [])
-                    if "text/plain" in output.get("data", {}) and output["data"]["text/plain"].startswith(("Correct", "Not yet"))]
+        texts = [output["data"]["text/plain"] for cell in notebook.cells
+                 for output in cell.get("outputs", []) if "text/plain" in output.get("data", {})]
+        verdicts = [text for text in texts if text.startswith(("Correct", "Not yet"))]
         assert verdicts, f"{path.name} checks nothing"
         assert all(verdict.startswith("Correct") for verdict in verdicts), verdicts
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.name)
 def test_chapter_structure(path):
-    text = "\n".join(cell.source for cell in nbformat.read(path, as_version=4).cells if cell.cell_type == "markdown")
+    cells = nbformat.read(path, as_version=4).cells
+    text = "\n".join(cell.source for cell in cells if cell.cell_type == "markdown")
     for heading in ("## Overview", "## Prerequisites", "## Summary", "## What's next"):
         assert heading in text, f"{path.name} lacks '{heading}'"
-
-
-@pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda path: path.name)
-def test_code_lines_fit_the_page(path):
-    for number, cell in enumerate(nbformat.read(path, as_version=4).cells):
-        if cell.cell_type == "code":
-            for line in cell.source.splitlines():
-                assert len(line) <= 88, f"{path.name}, cell {number}: {len(line)} characters: {line}"
 
 
 CHAPTERS = [path for path in NOTEBOOKS if path.parent.name == "book" and path.name[0].isdigit()]
@@ -65,8 +55,8 @@ CHAPTERS = [path for path in NOTEBOOKS if path.parent.name == "book" and path.na
 
 @pytest.mark.parametrize("path", CHAPTERS, ids=lambda path: path.name)
 def test_chapter_asserts_the_numbers_its_prose_states(path):
-    # a hidden cell (tag remove-cell) after each stated result: a change that moves the result fails
-    # the build instead of falsifying the text
+    # a hidden cell (tag remove-cell) after each stated result: a change that moves the result
+    # fails the build instead of falsifying the text
     cells = nbformat.read(path, as_version=4).cells
     checks = [cell for cell in cells if cell.cell_type == "code"
               and "remove-cell" in cell.metadata.get("tags", []) and "assert" in cell.source]
@@ -81,7 +71,7 @@ def test_figure_rules_catch_what_they_say():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from rsgeo.plot import figure_problems
+    from figure_audit import figure_problems
 
     figure, ax = plt.subplots()
     ax.plot([0, 1], [0, 1], color="white", label="true relation")
@@ -89,12 +79,16 @@ def test_figure_rules_catch_what_they_say():
     ax.set(title="a line", xlabel="column", ylabel="row (px)")
     problems = figure_problems(figure)
     assert any("x label 'column' has no units" in problem for problem in problems)
-    assert any("'true relation' is drawn in the background colour" in problem for problem in problems)
+    assert any("'true relation' is drawn in the background colour" in problem
+               for problem in problems)
     assert not any("y label" in problem for problem in problems)
     image = ax.imshow([[0, 1], [2, 3]])
     figure.colorbar(image, ax=ax, label="value")
     assert any("colour bar label 'value'" in problem for problem in figure_problems(figure))
     plt.close(figure)
+
+
+KERNELSPEC = {"name": "python3", "display_name": "Python 3", "language": "python"}
 
 
 def failing_notebook(folder):
@@ -103,7 +97,7 @@ def failing_notebook(folder):
         nbformat.v4.new_code_cell("x = 1"),
         nbformat.v4.new_code_cell("raise RuntimeError('this cell is broken on purpose')"),
     ])
-    notebook.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    notebook.metadata["kernelspec"] = KERNELSPEC
     path = Path(folder) / "broken.ipynb"
     nbformat.write(notebook, path)
     return path
@@ -116,11 +110,15 @@ def test_a_failing_cell_fails_execution(tmp_path):
 
 def test_a_failing_cell_or_an_unreadable_figure_fails_the_book_build(tmp_path):
     # the same configuration as the course's, on a two-page book: one page raises, the other draws
-    # a figure without title or axis labels (the build's kernels audit figures, see offline_book.py)
+    # a figure without title or axis labels (the build's kernels audit figures, see offline_book.py
+    # and figure_audit.py)
     config = (ROOT / "_config.yml").read_text()
-    (tmp_path / "_config.yml").write_text(config.replace("bibtex_bibfiles:\n  - references.bib\n", ""))
-    (tmp_path / "_toc.yml").write_text("format: jb-book\nroot: broken\nchapters:\n  - file: unlabelled\n")
-    for folder in ("_ext", "_vendor"):                  # the local extension and the vendored JavaScript
+    config = config.replace("bibtex_bibfiles:\n  - references.bib\n", "")
+    (tmp_path / "_config.yml").write_text(config)
+    (tmp_path / "_toc.yml").write_text("format: jb-book\nroot: broken\n"
+                                       "chapters:\n  - file: unlabelled\n")
+    # the local extensions (with the figure audit) and the vendored JavaScript
+    for folder in ("_ext", "_vendor"):
         shutil.copytree(ROOT / "book" / folder, tmp_path / "book" / folder, symlinks=True)
     failing_notebook(tmp_path)
     unlabelled = nbformat.v4.new_notebook(cells=[
@@ -128,7 +126,7 @@ def test_a_failing_cell_or_an_unreadable_figure_fails_the_book_build(tmp_path):
         nbformat.v4.new_code_cell("import rsgeo\nimport matplotlib.pyplot as plt\n"
                                   "plt.plot([0, 1], [1, 0])\nplt.show()"),
     ])
-    unlabelled.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    unlabelled.metadata["kernelspec"] = KERNELSPEC
     nbformat.write(unlabelled, tmp_path / "unlabelled.ipynb")
     jupyter_book = Path(sys.executable).parent / "jupyter-book"      # the command the README uses
     build = subprocess.run([str(jupyter_book), "build", str(tmp_path), "-W", "-n", "--keep-going"],

@@ -39,7 +39,8 @@ def chapter_titles():
     """The first heading of every page in _toc.yml, as the book shows it."""
     toc = yaml.safe_load((ROOT / "_toc.yml").read_text())
     titles = []
-    for entry in [{"file": toc["root"]}] + [entry for part in toc["parts"] for entry in part["chapters"]]:
+    for entry in [{"file": toc["root"]}] + [entry for part in toc["parts"]
+                                            for entry in part["chapters"]]:
         path = next(ROOT.glob(entry["file"] + ".*"))
         if path.suffix == ".ipynb":
             text = "\n".join(cell.source for cell in nbformat.read(path, as_version=4).cells

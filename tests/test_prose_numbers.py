@@ -15,7 +15,8 @@ def test_prose_types_no_number(path):
     assert not numbers, (
         f"{path.name} types {len(numbers)} numbers by hand; glue them from the computation "
         "({glue:text}`key:.2f`) or, for a definition, name it in prose_numbers.ALLOWED:\n"
-        + "\n".join(f"  cell {index}: {text!r} in: {sentence}" for index, text, sentence in numbers))
+        + "\n".join(f"  cell {index}: {text!r} in: {sentence}"
+                    for index, text, sentence in numbers))
 
 
 @pytest.mark.parametrize("path", CHAPTERS, ids=lambda path: path.name)

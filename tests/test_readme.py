@@ -37,14 +37,14 @@ def free_port():
 
 
 def test_jupyter_lab_as_the_readme_says_serves_the_chapters(tmp_path):
-    # The README tells students `jupyter lab` after the install: start that command headless, ask the
-    # server for the book's folder, and stop it.
+    # The README tells students `jupyter lab` after the install: start that command headless, ask
+    # the server for the book's folder, and stop it.
     command = next(block for block in readme_blocks() if "jupyter lab" in block)
     assert command.strip().endswith("jupyter lab")
     jupyter = Path(sys.executable).parent / "jupyter"
     port, token = free_port(), "rsgeo-test"
-    options = ["--no-browser", f"--port={port}", "--ip=127.0.0.1", f"--IdentityProvider.token={token}",
-               f"--ServerApp.root_dir={ROOT}"]
+    options = ["--no-browser", f"--port={port}", "--ip=127.0.0.1",
+               f"--IdentityProvider.token={token}", f"--ServerApp.root_dir={ROOT}"]
     if os.geteuid() == 0:                            # CI runs as root; students do not
         options.append("--allow-root")
     environment = {**os.environ, "JUPYTER_CONFIG_DIR": str(tmp_path / "config"),
@@ -67,7 +67,8 @@ def test_jupyter_lab_as_the_readme_says_serves_the_chapters(tmp_path):
         names = {item["name"] for item in listing["content"]}
         chapters = {path.name for path in (ROOT / "book").glob("0*.ipynb")}
         assert chapters and chapters <= names, sorted(chapters - names)
-        with urllib.request.urlopen(f"http://127.0.0.1:{port}/lab?token={token}", timeout=10) as page:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/lab?token={token}",
+                                    timeout=10) as page:
             assert page.status == 200 and b"JupyterLab" in page.read()
     finally:
         server.terminate()
@@ -88,5 +89,6 @@ def test_the_repository_holds_no_symbolic_link():
 def test_no_test_imports_from_conftest():
     # pytest imports conftest.py itself; shared helpers live in tests/notebook_runner.py
     offenders = [path.name for path in (ROOT / "tests").glob("*.py")
-                 if re.search(r"^\s*(from conftest import|import conftest)", path.read_text(), flags=re.M)]
+                 if re.search(r"^\s*(from conftest import|import conftest)", path.read_text(),
+                              flags=re.M)]
     assert not offenders, offenders

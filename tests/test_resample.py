@@ -7,9 +7,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from gdal_reference import affine_source, gcp_source, gdal_warp
-from rsgeo import gcp
+from rsgeo import transforms
 from rsgeo.resample import METHODS, grid_positions, interpolate, keys_weights, warp
+
+from gdal_reference import affine_source, gcp_source, gdal_warp
 
 SOURCE_TRANSFORM = affine.Affine(10.0, 0, 500_000.0, 0, -10.0, 7_400_000.0)
 
@@ -25,7 +26,8 @@ def noise(shape, dtype="uint8", seed=0):
 @pytest.mark.parametrize("method", METHODS)
 @pytest.mark.parametrize("dtype", ["uint8", "int16", "uint16", "float32"])
 def test_affine_warp_matches_gdal_bit_for_bit(method, dtype):
-    # A rotation of 7° and a slight zoom in (scale 1/0.9): GDAL keeps its plain 2x2 and 4x4 kernels.
+    # A rotation of 7° and a slight zoom in (scale 1/0.9): GDAL keeps its plain 2x2 and 4x4
+    # kernels.
     image = noise((300, 400), dtype)
     dst_transform = (SOURCE_TRANSFORM @ affine.Affine.translation(-20.3, -15.7)
                      @ affine.Affine.rotation(7) @ affine.Affine.scale(0.9))
@@ -50,8 +52,9 @@ def noise_and_curved_gcps():
     image = noise((320, 320), seed=3)
     image_xy = rng.uniform(0, 320, (12, 2))
     u, v = image_xy[:, 0] - 160, image_xy[:, 1] - 160
-    map_xy = np.column_stack([600_000 + 10 * image_xy[:, 0] + 0.4 * image_xy[:, 1] + 0.002 * u * v,
-                              7_300_000 - 10 * image_xy[:, 1] + 0.5 * image_xy[:, 0] + 0.003 * u * u])
+    map_xy = np.column_stack([
+        600_000 + 10 * image_xy[:, 0] + 0.4 * image_xy[:, 1] + 0.002 * u * v,
+        7_300_000 - 10 * image_xy[:, 1] + 0.5 * image_xy[:, 0] + 0.003 * u * u])
     return image, image_xy, map_xy
 
 
@@ -63,7 +66,7 @@ def test_polynomial_warp_matches_gdal_bit_for_bit(method):
     dst_transform = affine.Affine(7.0, 0, 600_400, 0, -7.0, 7_299_600)
     shape = (400, 400)
     expected = gdal_warp(image, gcp_source(image_xy, map_xy, 2), dst_transform, shape, method, 0)
-    model = gcp.fit_polynomial(map_xy, image_xy, 2)
+    model = transforms.fit_polynomial(map_xy, image_xy, 2)
     got = warp(image, model, shape, dst_transform, method=method, nodata=0)
     assert np.count_nonzero(got != expected) == 0
 
@@ -86,7 +89,8 @@ def test_warp_in_strips_equals_one_strip():
 
 @settings(max_examples=40, deadline=None)
 @given(st.integers(0, 255), st.sampled_from(METHODS),
-       st.lists(st.floats(0, 20), min_size=1, max_size=30), st.lists(st.floats(0, 15), min_size=1, max_size=30))
+       st.lists(st.floats(0, 20), min_size=1, max_size=30),
+       st.lists(st.floats(0, 15), min_size=1, max_size=30))
 def test_constant_image_stays_constant(value, method, cols, rows):
     n = min(len(cols), len(rows))
     image = np.full((15, 20), value, dtype=np.uint8)
@@ -120,7 +124,8 @@ def test_bilinear_is_exact_on_planes(a, b, c):
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.floats(-2, 2), st.floats(-2, 2), st.floats(-0.1, 0.1), st.floats(-0.1, 0.1), st.floats(-0.1, 0.1))
+@given(st.floats(-2, 2), st.floats(-2, 2),
+       st.floats(-0.1, 0.1), st.floats(-0.1, 0.1), st.floats(-0.1, 0.1))
 def test_cubic_reproduces_quadratics_in_the_interior(a, b, cxx, cxy, cyy):
     rows, cols = np.mgrid[0:24, 0:24] + 0.5
     surface = a * cols + b * rows + cxx * cols**2 + cxy * cols * rows + cyy * rows**2
@@ -166,11 +171,13 @@ def test_warp_rejects_a_bad_mapping_and_shape():
 def test_warp_in_the_wrong_direction_is_an_error_not_an_empty_image():
     image = noise((300, 400))
     shape = (300, 400)
-    # right: map -> image, the inverse of the raster's geotransform; the same grid gives the image back
+    # right: map -> image, the inverse of the raster's geotransform; the same grid gives the image
+    # back
     assert np.array_equal(warp(image, ~SOURCE_TRANSFORM, shape, SOURCE_TRANSFORM), image)
     # wrong: the raster's own transform, pixel -> map
     with pytest.raises(ValueError, match=r"no output cell lands inside the source image: is your "
-                                         r"mapping map → image \(u = f\(x, y\)\)\?.*~raster.transform"):
+                                         r"mapping map → image \(u = f\(x, y\)\)\?"
+                                         r".*~raster.transform"):
         warp(image, SOURCE_TRANSFORM, shape, SOURCE_TRANSFORM)
 
 
@@ -179,8 +186,8 @@ def test_a_model_fitted_image_to_map_is_an_error():
     rng = np.random.default_rng(5)
     image_xy = rng.uniform(0, 300, (8, 2))
     map_xy = np.column_stack(SOURCE_TRANSFORM @ (image_xy[:, 0], image_xy[:, 1]))
-    right = gcp.fit_polynomial(map_xy, image_xy, 1)
-    wrong = gcp.fit_polynomial(image_xy, map_xy, 1)
+    right = transforms.fit_polynomial(map_xy, image_xy, 1)
+    wrong = transforms.fit_polynomial(image_xy, map_xy, 1)
     assert np.array_equal(warp(image, right, (300, 400), SOURCE_TRANSFORM), image)
     with pytest.raises(ValueError, match=r"map → image.*fit_polynomial\(map_xy, image_xy"):
         warp(image, wrong, (300, 400), SOURCE_TRANSFORM)
@@ -207,7 +214,8 @@ def test_bands_first_images_are_accepted(shape):
     assert warp(image, affine.Affine.identity(), shape[1:]).shape == shape
 
 
-@pytest.mark.parametrize("shape", [351, 351.0, (351,), (2, 2, 2), ("a", 2), (2.5, 3), (0, 2), None])
+@pytest.mark.parametrize("shape", [351, 351.0, (351,), (2, 2, 2), ("a", 2), (2.5, 3), (0, 2),
+                                   None])
 def test_warp_shape_must_be_rows_cols(shape):
     with pytest.raises(ValueError, match=r"shape must be \(rows, cols\)"):
         warp(np.zeros((4, 4), dtype=np.uint8), affine.Affine.identity(), shape)
@@ -331,8 +339,10 @@ def test_keys_weights_reproduce_quadratics_and_match_keys_closed_form():
 
 # -- gdalwarp's common cases: no nodata, downsampling ---------------------------
 
+from rsgeo._checks import as_scale  # noqa: E402
+from rsgeo.resample import grid_scale  # noqa: E402
+
 from gdal_reference import gdalwarp_reproject  # noqa: E402
-from rsgeo.resample import check_scale, grid_scale  # noqa: E402
 
 
 @pytest.mark.parametrize("method", METHODS)
@@ -448,20 +458,22 @@ def test_widened_kernels_keep_constants(method, xscale, yscale, seed):
         interpolate(constant, at_c, at_r, method, nodata=np.nan, scale=(xscale, yscale)), 7.0)
 
 
-@pytest.mark.parametrize("scale", [0, -0.5, (0.5, 0), np.nan, np.inf, (0.5, 0.5, 0.5), "half", None])
+@pytest.mark.parametrize("scale", [0, -0.5, (0.5, 0), np.nan, np.inf, (0.5, 0.5, 0.5), "half",
+                                   None])
 def test_scale_must_be_positive(scale):
     with pytest.raises(ValueError, match="scale must be one or two finite numbers above 0"):
         interpolate(np.zeros((4, 4), dtype=np.uint8), [1.0], [1.0], "bilinear", scale=scale)
     if scale is not None:
         with pytest.raises(ValueError, match="scale must be one or two finite numbers above 0"):
             warp(np.zeros((4, 4), dtype=np.uint8), affine.Affine.identity(), (4, 4), scale=scale)
-    assert check_scale(0.5) == (0.5, 0.5)
+    assert as_scale(0.5) == (0.5, 0.5)
 
 
 # -- the output grid gdalwarp would choose ----------------------------------------
 
-from gdal_reference import gdal_suggested_grid  # noqa: E402
 from rsgeo.resample import suggested_grid  # noqa: E402
+
+from gdal_reference import gdal_suggested_grid  # noqa: E402
 
 
 @pytest.mark.parametrize("shape, transform", [
@@ -484,7 +496,7 @@ def test_suggested_grid_of_a_gcp_model_is_gdal_s_within_rounding():
     rng = np.random.default_rng(2)
     image_xy = rng.uniform(0, 350, (8, 2))
     map_xy = np.column_stack(transform @ (image_xy[:, 0], image_xy[:, 1]))
-    model = gcp.fit_polynomial(image_xy, map_xy, 1)
+    model = transforms.fit_polynomial(image_xy, map_xy, 1)
     expected_transform, expected_shape = gdal_suggested_grid(
         (351, 369), gcps=np.column_stack([image_xy, map_xy]))
     got_transform, got_shape = suggested_grid((351, 369), model)
@@ -565,7 +577,7 @@ def test_average_through_a_polynomial_matches_gdal():
     image, image_xy, map_xy = noise_and_curved_gcps()
     dst_transform = affine.Affine(37.0, 0, 600_400, 0, -37.0, 7_299_600)
     shape = (80, 80)
-    model = gcp.fit_polynomial(map_xy, image_xy, 2)
+    model = transforms.fit_polynomial(map_xy, image_xy, 2)
     scale = grid_scale(model, shape, dst_transform, image.shape)
     expected = gdal_warp(image, gcp_source(image_xy, map_xy, 2), dst_transform, shape, "average",
                          0, scale=scale)

@@ -31,7 +31,8 @@ def edition(tmp_path_factory):
 
 def test_solutions_are_gone_and_checks_stay(edition):
     for path in sorted((edition / "exercises").glob("*.ipynb")):
-        sources = [cell.source for cell in nbformat.read(path, as_version=4).cells if cell.cell_type == "code"]
+        sources = [cell.source for cell in nbformat.read(path, as_version=4).cells
+                   if cell.cell_type == "code"]
         assert not any(BEGIN in source for source in sources)
         assert any("check_" in source for source in sources)
 
@@ -40,11 +41,14 @@ def test_chapters_are_the_instructors_chapters(edition):
     for chapter in CHAPTERS:
         assert (edition / chapter).read_bytes() == (ROOT / chapter).read_bytes(), chapter
     config = (edition / "_config.yml").read_text()
-    assert re.search(r"execute_notebooks:\s*(force|cache)", config)  # chapters run, figures and all
-    assert re.search(r"exclude_patterns:\n\s+- \"exercises/\*\"", config)   # exercises: students run them
+    # chapters run, figures and all
+    assert re.search(r"execute_notebooks:\s*(force|cache)", config)
+    # exercises: students run them
+    assert re.search(r"exclude_patterns:\n\s+- \"exercises/\*\"", config)
 
 
-@pytest.mark.parametrize("name", sorted(path.name for path in (ROOT / "exercises").glob("*.ipynb")))
+@pytest.mark.parametrize("name",
+                         sorted(path.name for path in (ROOT / "exercises").glob("*.ipynb")))
 def test_student_notebook_stops_at_its_first_task(edition, name):
     path = edition / "exercises" / name
     with pytest.raises(CellExecutionError) as failure:
@@ -53,7 +57,8 @@ def test_student_notebook_stops_at_its_first_task(edition, name):
     assert "this task is yours" in str(failure.value)
     # it stopped at the first check, not earlier
     cells = nbformat.read(path, as_version=4).cells
-    first_check = next(cell for cell in cells if cell.cell_type == "code" and cell.source.startswith("check_"))
+    first_check = next(cell for cell in cells
+                       if cell.cell_type == "code" and cell.source.startswith("check_"))
     assert first_check.source in str(failure.value)
 
 
@@ -73,7 +78,8 @@ def test_the_edition_builds_with_every_chapter_executed(edition):
         # built alone, the edition has no Portuguese book beside it to switch to
         assert "rsgeo-language-switch" not in page, f"{chapter} links to a missing Portuguese book"
         if chapter.name.startswith("0") and "_widget" not in chapter.name:
-            assert re.search(r"<img[^>]+(_images/|data:image/png)", page), f"{chapter} has no figure"
+            assert re.search(r"<img[^>]+(_images/|data:image/png)", page), (
+                f"{chapter} has no figure")
     for exercise in sorted((edition / "exercises").glob("*.ipynb")):
         page = (html / "exercises" / exercise.with_suffix(".html").name).read_text()
         assert BEGIN not in page and "check_" in page

@@ -15,8 +15,16 @@ import rasterio
 
 from rsgeo import exercises
 from rsgeo.terrain import (
-    PushbroomSensor, RPCModel, dem_height, fit_rpc, height_error_budget, map_on_grid,
-    orthorectify, positional_error, relief_displacement, relief_displacement_photo,
+    PushbroomSensor,
+    RPCModel,
+    dem_height,
+    fit_rpc,
+    height_error_budget,
+    map_on_grid,
+    orthorectify,
+    positional_error,
+    relief_displacement,
+    relief_displacement_photo,
     simple_rpc_dict,
 )
 
@@ -125,7 +133,8 @@ def test_project_agrees_with_gdal_to_1e_6_pixel(scene):
     lon, lat, h = random_ground(1, 2000)
     col, row = rpc.project(lon, lat, h)
     with RPCTransformer(rpc.to_rasterio()) as transformer:
-        gcol, grow = transformer._transform(lon, lat, h, transform_direction=TransformDirection.reverse)
+        gcol, grow = transformer._transform(lon, lat, h,
+                                            transform_direction=TransformDirection.reverse)
     assert np.abs(col - np.asarray(gcol)).max() <= 1e-6
     assert np.abs(row - np.asarray(grow)).max() <= 1e-6
 
@@ -147,7 +156,8 @@ def test_localize_inverts_project_and_agrees_with_gdal(scene):
     back = rpc.project(lon, lat, h)
     assert np.abs(back[0] - col).max() < 1e-8 and np.abs(back[1] - row).max() < 1e-8
     with RPCTransformer(rpc.to_rasterio()) as transformer:
-        glon, glat = transformer._transform(col, row, h, transform_direction=TransformDirection.forward)
+        glon, glat = transformer._transform(col, row, h,
+                                            transform_direction=TransformDirection.forward)
     # GDAL's inverse stops at 0.1 pixel (RPC_PIXEL_ERROR_THRESHOLD): compare in pixels
     gback = rpc.project(np.asarray(glon), np.asarray(glat), h)
     assert np.abs(gback[0] - col).max() < 0.1 and np.abs(gback[1] - row).max() < 0.1

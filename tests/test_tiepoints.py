@@ -4,7 +4,7 @@ import affine
 import numpy as np
 import pytest
 
-from rsgeo import data, gcp, matching, regions, resample, synthetic, tiepoints
+from rsgeo import accuracy, data, gcp, matching, regions, resample, synthetic, tiepoints
 
 
 @pytest.fixture(scope="module")
@@ -26,9 +26,10 @@ def ccd_hrc():
     blocks = hrc.array[:rows, :cols].astype(float).reshape(rows // 8, 8, cols // 8, 8).mean(
         axis=(1, 3))
     gcps = data.load_gcps("cbers2b_ccd_hrc")
-    hand, kept = gcp.refine_gcps(gcps.map_xy, gcps.image_xy, 1, 2.5)
-    loo = gcp.leave_one_out_errors(gcps.map_xy[kept], gcps.image_xy[kept], 1)
-    return ccd, blocks, hrc.transform @ affine.Affine.scale(8), hand, float(np.sqrt(np.mean(loo**2)))
+    hand, kept = accuracy.refine_gcps(gcps.map_xy, gcps.image_xy, 1, 2.5)
+    loo = accuracy.leave_one_out_errors(gcps.map_xy[kept], gcps.image_xy[kept], 1)
+    loo_rms = float(np.sqrt(np.mean(loo**2)))
+    return ccd, blocks, hrc.transform @ affine.Affine.scale(8), hand, loo_rms
 
 
 def test_robust_fit_drops_a_blunder_with_any_rsgeo_model():
@@ -132,8 +133,8 @@ def test_measure_shifts_details_report_every_window():
     image[:64, :64] = 50.0                                # a constant quarter
     valid = np.ones(image.shape, bool)
     valid[100:, 100:] = False
-    points, shifts = gcp.measure_shifts(image, image, step=64, window=64)
-    all_points, all_shifts, table = gcp.measure_shifts(image, image, step=64, window=64,
+    points, shifts = tiepoints.measure_shifts(image, image, step=64, window=64)
+    all_points, all_shifts, table = tiepoints.measure_shifts(image, image, step=64, window=64,
                                                        valid=valid, details=True)
     assert len(points) == 3 and len(all_points) == 4
     assert table["skipped"].tolist() == ["constant", "", "", "invalid"]
@@ -156,13 +157,30 @@ def test_measure_shifts_details_report_every_window():
     (lambda land: tiepoints.feature_tiepoints(land.reference, land.adjustment, "surf"),
      "unknown detector"),
     (lambda land: tiepoints.robust_fit([[0, 0], [1, 1]], [[0, 0], [1, 1]]), "at least 3"),
-    (lambda land: tiepoints.register("not gcps"), "GCPSet"),
     (lambda land: tiepoints.grid_error(affine.Affine.identity(), affine.Affine.identity(),
                                        affine.Affine.identity(), (5, 5), step=0), "step"),
 ])
 def test_bad_input_says_what_was_found_and_what_is_needed(land, call, message):
     with pytest.raises(ValueError, match=message):
         call(land)
+
+
+def test_register_refuses_what_is_not_a_gcp_set():
+    with pytest.raises(TypeError, match="GCPSet"):
+        tiepoints.register("not gcps")
+
+
+def test_register_and_register_by_regions_return_one_registration_type(land):
+    reference = regions.forest_segments(land.reference, threshold=185)
+    adjustment = regions.forest_segments(land.adjustment, threshold=185)
+    by_regions = matching.register_by_regions(reference, adjustment, land.reference_transform,
+                                              20, 30, seed=0)
+    shared = tiepoints.register(gcp.GCPSet(by_regions.map_xy, by_regions.image_xy),
+                                tolerance=1.0, min_gcps=4)
+    assert type(by_regions) is type(shared) is tiepoints.Registration
+    assert by_regions.match is not None and shared.match is None
+    np.testing.assert_array_equal(shared.map_xy, by_regions.map_xy)
+    assert not hasattr(matching, "Registration")
 
 
 # -- the exercise checks of chapter 6c (rsgeo.exercises) ---------------------
@@ -225,3 +243,46 @@ def test_blas_threads_are_restored_after_correlation():
     with tiepoints._one_blas_thread():
         assert get() == 1
     assert get() == before
+
+
+def _textured(shape, seed):
+    from scipy.ndimage import gaussian_filter
+
+    return gaussian_filter(np.random.default_rng(seed).normal(0, 1, shape), 12) * 400 + 100
+
+
+def test_offsets_against_reference_recover_a_shifted_geotransform():
+    # the coarse image is the fine one averaged 8 × 8; its declared geotransform is 10 m east and
+    # 30 m north of the truth, so its content sits (+0.5, -1.5) pixels from where it says
+    fine = _textured((1600, 1600), seed=8)
+    fine_transform = affine.Affine(2.5, 0, 770_000, 0, -2.5, 7_370_000)
+    coarse = fine.reshape(200, 8, 200, 8).mean(axis=(1, 3))
+    declared = affine.Affine(20, 0, 770_000 + 10, 0, -20, 7_370_000 + 30)
+    points, offsets = tiepoints.offsets_against_reference(coarse, declared, fine, fine_transform,
+                                                    step=40, window=64)
+    assert len(points) >= 9
+    np.testing.assert_allclose(np.median(offsets, axis=0), [0.5, -1.5], atol=0.1)
+    declared = affine.Affine(20, 0, 770_000 - 5, 0, -20, 7_370_000 - 13)   # (-0.25, +0.65) px
+    _, offsets = tiepoints.offsets_against_reference(coarse, declared, fine, fine_transform,
+                                               step=40, window=64)
+    np.testing.assert_allclose(np.median(offsets, axis=0), [-0.25, 0.65], atol=0.15)
+    _, none = tiepoints.offsets_against_reference(coarse, fine_transform @ fine_transform.scale(8),
+                                            fine, fine_transform, step=40, window=64)
+    np.testing.assert_allclose(np.median(none, axis=0), [0, 0], atol=0.1)
+    with pytest.raises(ValueError, match="whole multiple"):
+        tiepoints.offsets_against_reference(
+            coarse, affine.Affine(21, 0, 770_000, 0, -21, 7_370_000), fine, fine_transform)
+    with pytest.raises(ValueError, match="north-up"):
+        tiepoints.offsets_against_reference(
+            coarse, affine.Affine(20, 1, 770_000, 0, -20, 7_370_000), fine, fine_transform)
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: tiepoints.measure_shifts(np.ones((50, 50)), np.ones((50, 50)), window=64),
+     "larger than"),
+    (lambda: tiepoints.measure_shifts(np.full((80, 80), np.nan), np.ones((80, 80))), "NaN"),
+    (lambda: tiepoints.measure_shifts(np.ones((80, 80)), np.ones((80, 80)), step=0), "step"),
+])
+def test_measure_shifts_refuses_what_it_cannot_measure(call, message):
+    with pytest.raises(ValueError, match=message):
+        call()

@@ -1,15 +1,19 @@
-"""rsgeo.gcp.fit_transform: QGIS's Georeferencer models against GDAL and scikit-image."""
+"""rsgeo.transforms: QGIS's Georeferencer models and GDAL's polynomials against GDAL and
+scikit-image."""
 
 import affine
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from rasterio.control import GroundControlPoint
 from rasterio.transform import GCPTransformer
 from skimage.transform import PolynomialTransform, ProjectiveTransform, SimilarityTransform
 
-from gdal_reference import gcp_source, gdal_warp
-from rsgeo import data, gcp
-from rsgeo.resample import warp
+from rsgeo import accuracy, data, transforms
+from rsgeo.resample import grid_positions, warp
+
+from gdal_reference import gcp_source, gdal_map_to_image, gdal_warp
 
 
 def utm_gcps(n, seed, noise=15.0):
@@ -45,7 +49,7 @@ def inside_points(map_xy, n=300, seed=1):
                          ids=["cbers", "random8", "random25", "random60"])
 def test_tps_predicts_what_gdal_tps_predicts(gcps):
     image_xy, map_xy = gcps
-    model = gcp.fit_transform(map_xy, image_xy, "tps")
+    model = transforms.fit_transform(map_xy, image_xy, "tps")
     points = np.vstack([map_xy, inside_points(map_xy)])
     expected = gdal_tps_map_to_image(image_xy, map_xy, points)
     assert np.abs(model(points) - expected).max() < 1e-6
@@ -71,7 +75,7 @@ def test_tps_warp_matches_gdalwarp_tps_bit_for_bit():
               .replace("</GCPTransformer></SrcGCPTransformer>",
                        "</TPSTransformer></SrcTPSTransformer>"))
     # gdalwarp fits the spline image -> map and inverts it exactly at every output cell
-    model = gcp.fit_transform(image_xy, map_xy, "tps").inverse()
+    model = transforms.fit_transform(image_xy, map_xy, "tps").inverse()
     # GDAL stops its inversion within about 1e-6 px of the root, rsgeo goes to 1e-8 px:
     # nearest is bit-exact, and bilinear/cubic may round a handful of pixels (of 160 000)
     # the other way, by one DN.
@@ -83,7 +87,7 @@ def test_tps_warp_matches_gdalwarp_tps_bit_for_bit():
         assert np.abs(got.astype(int) - expected).max() <= (1 if allowed else 0)
     # the reverse spline (what rasterio's GCPTransformer gives map -> image) is NOT what
     # gdalwarp uses: it is off by up to a tenth of a pixel between the GCPs
-    reverse = gcp.fit_transform(map_xy, image_xy, "tps")
+    reverse = transforms.fit_transform(map_xy, image_xy, "tps")
     assert np.count_nonzero(warp(image, reverse, shape, dst_transform, nodata=0)
                             != gdal_warp(image, source, dst_transform, shape, "nearest", 0)) > 100
 
@@ -102,7 +106,7 @@ def noisy_similarity(seed, reflect):
 @pytest.mark.parametrize("reflect", [False, True])
 def test_helmert_is_scikit_image_similarity_estimate(reflect):
     src, dst = noisy_similarity(4, reflect)
-    model = gcp.fit_transform(src, dst, "helmert")
+    model = transforms.fit_transform(src, dst, "helmert")
     flip = np.diag([1.0, -1.0, 1.0]) if reflect else np.eye(3)
     # scikit-image keeps a proper rotation: give it the rows flipped back (image y up)
     reference = SimilarityTransform.from_estimate(src, dst @ flip[:2, :2])
@@ -120,7 +124,7 @@ def test_helmert_is_scikit_image_similarity_estimate(reflect):
 @pytest.mark.parametrize("gcps", [cbers(), utm_gcps(30, 5)], ids=["cbers", "random30"])
 def test_projective_is_scikit_image_projective_estimate(gcps):
     image_xy, map_xy = gcps
-    model = gcp.fit_transform(map_xy, image_xy, "projective")
+    model = transforms.fit_transform(map_xy, image_xy, "projective")
     reference = ProjectiveTransform.from_estimate(map_xy, image_xy).params
     reference = reference / reference[2, 2]
     assert np.abs(model.matrix - reference).max() <= 1e-9 * np.abs(reference).max()
@@ -130,7 +134,7 @@ def test_projective_is_scikit_image_projective_estimate(gcps):
 def test_projective_from_four_points_is_exact_and_inverts():
     src = np.array([[0.0, 0], [100, 0], [100, 100], [0, 100]])
     dst = np.array([[10.0, 5], [90, 12], [80, 95], [5, 80]])
-    model = gcp.fit_transform(src, dst, "projective")
+    model = transforms.fit_transform(src, dst, "projective")
     assert model.residuals(src, dst).max() < 1e-9
     back = model.inverse()
     assert back.kind == "projective"
@@ -141,7 +145,7 @@ def test_linear_is_scale_and_offset_per_axis():
     rng = np.random.default_rng(6)
     src = rng.uniform(0, 1000, (15, 2))
     dst = src * [0.05, -0.04] + [10, 900] + rng.normal(0, 0.5, (15, 2))
-    model = gcp.fit_transform(src, dst, "linear")
+    model = transforms.fit_transform(src, dst, "linear")
     assert model.matrix[0, 1] == 0 and model.matrix[1, 0] == 0
     for axis in range(2):
         slope, intercept = np.polyfit(src[:, axis], dst[:, axis], 1)
@@ -152,18 +156,18 @@ def test_linear_is_scale_and_offset_per_axis():
 
 def test_polynomial_kind_is_fit_polynomial_and_differs_from_scikit_image_tls():
     image_xy, map_xy = utm_gcps(20, 7, noise=40.0)
-    model = gcp.fit_transform(map_xy, image_xy, "polynomial", order=2)
-    reference = gcp.fit_polynomial(map_xy, image_xy, 2)
+    model = transforms.fit_transform(map_xy, image_xy, "polynomial", order=2)
+    reference = transforms.fit_polynomial(map_xy, image_xy, 2)
     assert np.array_equal(model.coefficients, reference.coefficients)
     assert model.kind == "polynomial" and model.n_parameters == 12
     # ordinary least squares: the residuals are orthogonal to every term
     residual = model(map_xy) - image_xy
-    terms = gcp.design_matrix(map_xy - map_xy.mean(axis=0), 2)
+    terms = transforms.design_matrix(map_xy - map_xy.mean(axis=0), 2)
     assert np.abs(terms.T @ residual).max() < 1e-6 * np.abs(terms).max() * np.abs(residual).max()
     # scikit-image's total least squares is another estimate: off by far more than rounding
     # even on centred coordinates, and by pixels on raw UTM coordinates
     image_xy, map_xy = cbers()
-    model = gcp.fit_transform(map_xy, image_xy, "polynomial", order=2)
+    model = transforms.fit_transform(map_xy, image_xy, "polynomial", order=2)
     centred = map_xy - map_xy.mean(axis=0)
     tls = PolynomialTransform.from_estimate(centred, image_xy, order=2)
     assert np.abs(tls(centred) - model(map_xy)).max() > 1e-3
@@ -175,9 +179,9 @@ def test_polynomial_kind_is_fit_polynomial_and_differs_from_scikit_image_tls():
     ("helmert", None, 2), ("projective", None, 4), ("linear", None, 2), ("tps", None, 3),
     ("polynomial", 1, 3), ("polynomial", 2, 6), ("polynomial", 3, 10)])
 def test_min_gcps_of_every_kind(kind, order, expected):
-    assert gcp.min_gcps(kind, order) == expected
+    assert transforms.min_gcps(kind, order) == expected
     if order is not None:
-        assert gcp.min_gcps(order) == expected
+        assert transforms.min_gcps(order) == expected
 
 
 @pytest.mark.parametrize("kind, order", [
@@ -185,7 +189,7 @@ def test_min_gcps_of_every_kind(kind, order, expected):
     ("projective", None), ("tps", None)])
 def test_every_kind_follows_the_protocol(kind, order):
     image_xy, map_xy = cbers()
-    model = gcp.fit_transform(map_xy, image_xy, kind, order)
+    model = transforms.fit_transform(map_xy, image_xy, kind, order)
     assert model.kind == kind
     assert model(map_xy).shape == map_xy.shape
     assert model.residuals(map_xy, image_xy).shape == (len(map_xy),)
@@ -204,29 +208,30 @@ def test_every_kind_follows_the_protocol(kind, order):
 def test_bad_kind_or_order_is_a_value_error(kind, order, message):
     image_xy, map_xy = cbers()
     with pytest.raises(ValueError, match=message):
-        gcp.fit_transform(map_xy, image_xy, kind, order)
+        transforms.fit_transform(map_xy, image_xy, kind, order)
     with pytest.raises(ValueError, match=message):
-        gcp.min_gcps(kind, order)
+        transforms.min_gcps(kind, order)
 
 
 @pytest.mark.parametrize("kind, n", [("helmert", 1), ("projective", 3), ("tps", 2),
                                      ("linear", 1)])
 def test_too_few_points_is_a_value_error(kind, n):
     image_xy, map_xy = cbers()
-    with pytest.raises(ValueError, match=f"needs at least {gcp.min_gcps(kind)} GCPs, got {n}"):
-        gcp.fit_transform(map_xy[:n], image_xy[:n], kind)
+    needed = transforms.min_gcps(kind)
+    with pytest.raises(ValueError, match=f"needs at least {needed} GCPs, got {n}"):
+        transforms.fit_transform(map_xy[:n], image_xy[:n], kind)
 
 
 def test_collinear_points_for_projective_and_tps_are_value_errors():
     line = np.column_stack([np.arange(6.0), 2 * np.arange(6.0) + 1])
     target = line * 3 + [[0, 0], [1, 0], [0, 1], [2, 2], [0, 0], [1, 1]]
     with pytest.raises(ValueError, match="collinear"):
-        gcp.fit_transform(line, target, "projective")
+        transforms.fit_transform(line, target, "projective")
     with pytest.raises(ValueError, match="collinear"):
-        gcp.fit_transform(line, target, "tps")
+        transforms.fit_transform(line, target, "tps")
     three_on_a_line = np.array([[0.0, 0], [1, 1], [2, 2], [0, 5]])
     with pytest.raises(ValueError, match="collinear"):
-        gcp.fit_transform(three_on_a_line, three_on_a_line * 2, "projective")
+        transforms.fit_transform(three_on_a_line, three_on_a_line * 2, "projective")
 
 
 def test_duplicate_points_for_tps_are_a_value_error():
@@ -234,35 +239,7 @@ def test_duplicate_points_for_tps_are_a_value_error():
     map_xy = np.vstack([map_xy, map_xy[3]])
     image_xy = np.vstack([image_xy, image_xy[3] + 2])
     with pytest.raises(ValueError, match="repeat"):
-        gcp.fit_transform(map_xy, image_xy, "tps")
-
-
-def test_leave_one_out_matches_fitting_without_the_point():
-    image_xy, map_xy = cbers()
-    for kind, order in (("projective", None), ("tps", None), ("polynomial", 2)):
-        errors = gcp.transform_leave_one_out(map_xy, image_xy, kind, order)
-        keep = np.arange(len(map_xy)) != 9
-        alone = gcp.fit_transform(map_xy[keep], image_xy[keep], kind, order)
-        assert np.isclose(errors[9], alone.residuals(map_xy[9:10], image_xy[9:10])[0])
-        if kind == "polynomial":
-            assert np.allclose(errors, gcp.leave_one_out_errors(map_xy, image_xy, order))
-    with pytest.raises(ValueError, match="one more than its minimum"):
-        gcp.transform_leave_one_out(map_xy[:4], image_xy[:4], "projective")
-
-
-def test_compare_models_fits_on_gcps_and_measures_check_points():
-    image_xy, map_xy = cbers()
-    is_check = np.zeros(len(map_xy), bool)
-    is_check[[1, 6, 12]] = True
-    table = gcp.compare_models(map_xy, image_xy, is_check)
-    assert list(table.index) == [label for label, _, _ in gcp.GEOREFERENCER_MODELS]
-    tps = gcp.fit_transform(map_xy[~is_check], image_xy[~is_check], "tps")
-    assert np.isclose(table.loc["tps", "check RMS (px)"],
-                      tps.rms(map_xy[is_check], image_xy[is_check]))
-    assert table.loc["tps", "fitting RMS (px)"] < 1e-6
-    assert table.loc["polynomial 3", "parameters"] == 20
-    with pytest.raises(ValueError, match="one flag per point"):
-        gcp.compare_models(map_xy, image_xy, is_check[:5])
+        transforms.fit_transform(map_xy, image_xy, "tps")
 
 
 def test_model_explorer_switches_models_in_place():
@@ -270,7 +247,8 @@ def test_model_explorer_switches_models_in_place():
 
     matplotlib.use("Agg")
     from rsgeo import widgets
-    from rsgeo.plot import figure_problems
+
+    from figure_audit import figure_problems
 
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     box = widgets.model_explorer(gcps, model="polynomial 1")
@@ -302,14 +280,14 @@ def test_check_helmert_recognises_the_answer_and_the_mistakes():
     from rsgeo.exercises import ExerciseNotSolved, check_helmert
 
     src, dst = helmert_task()
-    m = gcp.fit_transform(src, dst, "helmert").matrix
+    m = transforms.fit_transform(src, dst, "helmert").matrix
     right = [m[0, 0], m[1, 0], m[0, 2], m[1, 2]]
     assert check_helmert(right, src, dst).ok
     with pytest.raises(ExerciseNotSolved):
         check_helmert(..., src, dst)
     sign = check_helmert([right[0], -right[1], right[2], right[3]], src, dst)
     assert not sign.ok and "wrong sign" in sign.hint and "`b`" in sign.message
-    exact = gcp.fit_transform(src[:2], dst[:2], "helmert").matrix
+    exact = transforms.fit_transform(src[:2], dst[:2], "helmert").matrix
     two = check_helmert([exact[0, 0], exact[1, 0], exact[0, 2], exact[1, 2]], src, dst)
     assert not two.ok and "every point" in two.hint
     assert "four" in check_helmert([1, 2, 3], src, dst).message
@@ -323,12 +301,12 @@ def test_check_projective_matrix_recognises_the_answer_and_the_mistakes():
 
     ground = np.array([[0.0, 0.0], [105.0, 0.0], [105.0, 68.0], [0.0, 68.0]])
     photo = np.array([[112.0, 590.0], [905.0, 610.0], [760.0, 210.0], [250.0, 200.0]])
-    right = gcp.fit_transform(ground, photo, "projective").matrix
+    right = transforms.fit_transform(ground, photo, "projective").matrix
     assert check_projective_matrix(right, ground, photo).ok
     assert check_projective_matrix(3 * right, ground, photo).ok
     assert "transposed" in check_projective_matrix(right.T, ground, photo).hint
     assert "dst to src" in check_projective_matrix(np.linalg.inv(right), ground, photo).hint
-    affine = gcp.fit_transform(ground, photo, "polynomial", 1)
+    affine = transforms.fit_transform(ground, photo, "polynomial", 1)
     a = np.vstack([affine.coefficients[:, [1, 2, 0]], [0, 0, 1]])
     a[:, 2] -= a[:, :2] @ affine.origin
     verdict = check_projective_matrix(a, ground, photo)
@@ -342,8 +320,9 @@ def test_check_model_choice_judges_on_check_points():
 
     gcps = synthetic.distorted_pair(seed=2).gcps
     is_check = np.arange(len(gcps)) % 3 == 0
-    table = gcp.compare_models(gcps.map_xy, gcps.image_xy, is_check,
-                               [m for m in gcp.GEOREFERENCER_MODELS if m[0] != "polynomial 3"])
+    table = accuracy.compare_models(gcps.map_xy, gcps.image_xy, is_check,
+                               [m for m in transforms.GEOREFERENCER_MODELS
+                                if m[0] != "polynomial 3"])
     best = table["check RMS (px)"].idxmin()
     assert check_model_choice(best, gcps.map_xy, gcps.image_xy, is_check).ok
     tps = check_model_choice("tps", gcps.map_xy, gcps.image_xy, is_check)
@@ -351,3 +330,169 @@ def test_check_model_choice_judges_on_check_points():
     assert f"{table['check RMS (px)'][best]:.2f}" not in repr(tps)
     assert "one of" in check_model_choice("affine", gcps.map_xy, gcps.image_xy, is_check).message
     assert "as text" in check_model_choice(2, gcps.map_xy, gcps.image_xy, is_check).message
+
+
+# --- Polynomials: GDAL's GCP transformer, the lecture's terms, Newton's inverse ---
+
+
+@pytest.mark.parametrize("order, n", [(1, 8), (2, 12), (3, 20), (3, 10)])
+def test_map_to_image_agrees_with_gdal(order, n):
+    # GDAL's own reference: a warped VRT with <Order>, no approximate transformer
+    # (Reference: gdal_crs.cpp)
+    image_xy, map_xy = utm_gcps(n, seed=order * 100 + n)
+    dst_transform = affine.Affine(20, 0, map_xy[:, 0].min() + 2000, 0, -20,
+                                  map_xy[:, 1].max() - 2000)
+    gdal_cols, gdal_rows = gdal_map_to_image(image_xy, map_xy, order, dst_transform, (150, 150))
+    x, y = grid_positions((150, 150), dst_transform)
+    predicted = transforms.fit_polynomial(map_xy, image_xy, order)(
+        np.column_stack([x.ravel(), y.ravel()]))
+    inside = np.isfinite(gdal_cols.ravel())
+    assert inside.sum() > 5000
+    assert np.abs(predicted[inside, 0] - gdal_cols.ravel()[inside]).max() < 1e-6
+    assert np.abs(predicted[inside, 1] - gdal_rows.ravel()[inside]).max() < 1e-6
+
+
+@pytest.mark.parametrize("order, n", [(1, 5), (2, 9)])
+def test_image_to_map_agrees_with_rasterio_gcp_transformer(order, n):
+    # rasterio's GCPTransformer picks GDAL's order from the count: 1 below 6 GCPs, else 2.
+    image_xy, map_xy = utm_gcps(n, seed=7 + n)
+    gcps = [GroundControlPoint(row=r, col=c, x=x, y=y) for (c, r), (x, y) in zip(image_xy, map_xy)]
+    rng = np.random.default_rng(1)
+    cols, rows = rng.uniform(0, 1000, 300), rng.uniform(0, 800, 300)
+    with GCPTransformer(gcps) as transformer:
+        xs, ys = transformer.xy(rows, cols, offset="ul")
+    predicted = transforms.fit_polynomial(image_xy, map_xy, order)(np.column_stack([cols, rows]))
+    # 1e-6 pixel = 2e-5 m at 20 m pixels
+    np.testing.assert_allclose(predicted, np.column_stack([xs, ys]), rtol=0, atol=2e-5)
+
+
+def test_exact_with_the_minimum_number_of_gcps():
+    for order in (1, 2, 3):
+        image_xy, map_xy = utm_gcps(transforms.min_gcps(order), seed=order)
+        model = transforms.fit_polynomial(map_xy, image_xy, order)
+        np.testing.assert_allclose(model(map_xy), image_xy, atol=1e-6)
+
+
+def test_reverse_is_the_least_squares_fit_of_the_other_direction():
+    # GDAL fits image -> map separately: the reverse's residuals must satisfy the normal equations
+    # of the image -> map system (orthogonal to every term), and differ from the forward's inverse
+    image_xy, map_xy = utm_gcps(12, seed=3)
+    model = transforms.fit_polynomial(map_xy, image_xy, 2)
+    reverse = model.reverse()
+    centred = (image_xy - image_xy.mean(axis=0)) / 1000
+    terms = transforms.design_matrix(centred, 2)
+    left_over = reverse(image_xy) - map_xy
+    assert np.abs(terms.T @ left_over).max() < 1e-6 * np.abs(left_over).max() * len(terms)
+    assert 5 < reverse.rms(image_xy, map_xy) < 40          # GCP noise of 15 m, not zero
+    # swapping back gives the forward model again
+    np.testing.assert_allclose(reverse.reverse()(map_xy), model(map_xy), atol=1e-6)
+
+
+def test_inverse_undoes_the_model_where_the_reverse_fit_does_not():
+    image_xy, map_xy = utm_gcps(12, seed=3)
+    model = transforms.fit_polynomial(map_xy, image_xy, 2)
+    inside = map_xy.mean(axis=0) + np.random.default_rng(0).uniform(-4000, 4000, (50, 2))
+    np.testing.assert_allclose(model.inverse()(model(inside)), inside, atol=1e-6)
+    assert model.inverse().inverse() is model
+    assert model.inverse().residuals(model(inside), inside).max() < 1e-6
+    assert np.abs(model.reverse()(model(inside)) - inside).max() > 0.01     # only approximate
+
+
+def test_jacobian_matches_finite_differences():
+    image_xy, map_xy = utm_gcps(20, seed=4)
+    model = transforms.fit_polynomial(map_xy, image_xy, 3)
+    point = map_xy[:3]
+    step = 1e-2
+    numeric = np.stack([(model(point + [step, 0]) - model(point - [step, 0])) / (2 * step),
+                        (model(point + [0, step]) - model(point - [0, step])) / (2 * step)],
+                       axis=-1)
+    np.testing.assert_allclose(model.jacobian(point), numeric, rtol=1e-6, atol=1e-9)
+
+
+def test_inverse_refuses_points_where_the_polynomial_folds():
+    src = np.array([[x, y] for x in (-1.0, 0.0, 1.0) for y in (-1.0, 0.0, 1.0)])
+    u = src[:, 0] + 0.8 * src[:, 0] ** 2                   # never below -0.3125 (at x = -0.625)
+    model = transforms.fit_polynomial(src, np.column_stack([u, src[:, 1]]), 2)
+    with pytest.raises(ValueError, match="no inverse"):
+        model.inverse()([[-1.0, 0.0]])
+
+
+@settings(max_examples=60, deadline=None)
+@given(order=st.sampled_from([1, 2, 3]), seed=st.integers(0, 10_000),
+       u=st.floats(0.1, 0.9), v=st.floats(0.1, 0.9), bend=st.floats(-0.15, 0.15))
+def test_every_polynomial_inverse_round_trips(order, seed, u, v, bend):
+    # a smooth, one-to-one map -> image mapping, sampled at enough GCPs for the order
+    rng = np.random.default_rng(seed)
+    image_xy = rng.uniform(0, 1000, (transforms.min_gcps(order) + 6, 2))
+    c, r = image_xy[:, 0] / 1000, image_xy[:, 1] / 1000
+    map_xy = np.column_stack([500_000 + 20_000 * (c + bend * r * r),
+                              7_400_000 - 20_000 * (r + bend * c * r)])
+    model = transforms.fit_polynomial(map_xy, image_xy, order)
+    inside = np.array([[500_000 + 20_000 * u, 7_400_000 - 20_000 * v]])
+    np.testing.assert_allclose(model.inverse()(model(inside)), inside, rtol=0, atol=1e-5)
+    image_point = model(inside)
+    np.testing.assert_allclose(model(model.inverse()(image_point)), image_point, rtol=0, atol=1e-6)
+
+
+@pytest.mark.parametrize("src, dst, order, message", [
+    (np.zeros((4, 2)) + np.arange(4)[:, None] * [1, 2], np.random.default_rng(0).random((4, 2)), 2,
+     "order 2 needs at least 6 GCPs, got 4"),
+    (np.column_stack([np.arange(5.0), 2 * np.arange(5.0)]),
+     np.random.default_rng(0).random((5, 2)), 1,
+     "collinear, repeated"),
+    (np.array([[0, 0], [1, 0], [0, 1], [1, 1.0]]).repeat(2, axis=0),
+     np.random.default_rng(0).random((8, 2)), 2,
+     "collinear, repeated"),
+    (np.array([[0, 0], [1, np.nan], [0, 1.0]]), np.zeros((3, 2)), 1, "NaN or infinite"),
+    (np.array([[0, 0], [1, np.inf], [0, 1.0]]), np.zeros((3, 2)), 1, "NaN or infinite"),
+    (np.zeros((5, 3)), np.zeros((5, 2)), 1, r"\(n, 2\)"),
+    (np.random.default_rng(0).random((5, 2)), np.zeros((4, 2)), 1, "same GCPs"),
+    (np.random.default_rng(0).random((12, 2)), np.zeros((12, 2)), 4, "must be 1, 2 or 3"),
+    (np.random.default_rng(0).random((12, 2)), np.zeros((12, 2)), 0, "must be 1, 2 or 3"),
+])
+def test_bad_gcps_are_clear_value_errors(src, dst, order, message):
+    with pytest.raises(ValueError, match=message):
+        transforms.fit_polynomial(src, dst, order)
+
+
+def test_coefficients_in_the_lecture_order():
+    src = np.random.default_rng(2).random((10, 2)) * 100
+    dst = np.column_stack([1 + 2 * src[:, 0] + 3 * src[:, 1] + 4 * src[:, 0] * src[:, 1],
+                           5 + 6 * src[:, 0] ** 2 + 7 * src[:, 1] ** 2])
+    model = transforms.fit_polynomial(src - src.mean(axis=0), dst, 2)
+    table = model.coefficient_table()
+    assert list(table)[:6] == ["a0 (1)", "a1 (x)", "a2 (y)", "a3 (xy)", "a4 (x²)", "a5 (y²)"]
+    assert table["a3 (xy)"] == pytest.approx(4) and table["b5 (y²)"] == pytest.approx(7)
+
+
+# --- One registry, one Newton inverse ---
+
+
+def test_the_registry_is_the_one_list_of_kinds():
+    image_xy, map_xy = cbers()
+    assert transforms.GEOREFERENCER_MODELS == tuple(
+        (entry.label, entry.kind, entry.order) for entry in transforms.REGISTRY)
+    assert transforms.KINDS == ("linear", "helmert", "polynomial", "projective", "tps")
+    for entry in transforms.REGISTRY:
+        model = transforms.fit_transform(map_xy, image_xy, entry.kind, entry.order)
+        assert model.n_parameters == transforms.n_parameters(entry.kind, entry.order,
+                                                             n_gcps=len(map_xy))
+        assert transforms.min_gcps(entry.kind, entry.order) == entry.min_gcps
+    with pytest.raises(ValueError, match="give n_gcps"):
+        transforms.n_parameters("tps")
+
+
+def test_polynomial_and_spline_share_one_newton_inverse():
+    from rsgeo.errors import ModelError
+
+    src = np.array([[x, y] for x in (-1.0, 0.0, 1.0) for y in (-1.0, 0.0, 1.0)])
+    u = src[:, 0] + 0.8 * src[:, 0] ** 2                   # folds: no inverse below -0.3125
+    folded = np.column_stack([u, src[:, 1]])
+    for model in (transforms.fit_polynomial(src, folded, 2),
+                  transforms.fit_transform(src, folded, "tps")):
+        with pytest.raises(ModelError, match="no inverse"):
+            model.inverse(max_iterations=0)([[0.5, 0.5]])      # no step: nothing converges
+        inside = model(np.array([[0.2, 0.3]]))
+        np.testing.assert_allclose(model(model.inverse()(inside)), inside, atol=1e-8)
+    with pytest.raises(ModelError, match="no inverse"):
+        transforms.fit_polynomial(src, folded, 2).inverse()([[-1.0, 0.0]])

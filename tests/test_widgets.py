@@ -13,9 +13,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from rsgeo import data, distortion, gcp, matching, radiometry, synthetic, widgets  # noqa: E402
-from rsgeo.plot import (draw_grid, draw_mesh, draw_stretch_frame, figure_problems,  # noqa: E402
-                        fix_layout, grid_path)
+from rsgeo import accuracy, data, distortion, matching, radiometry, synthetic, transforms, widgets  # noqa: E402
+from rsgeo.plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path  # noqa: E402
+
+from figure_audit import figure_problems  # noqa: E402
 
 
 @pytest.fixture(autouse=True)
@@ -90,14 +91,14 @@ def test_gcp_explorer_updates_its_bars_and_rms():
     assert list(ax.patches) == bars
     image_xy = gcps.image_xy.copy()
     image_xy[5] += (6.0, -4.5)
-    model = gcp.fit_polynomial(gcps.map_xy, image_xy, 2)
-    _, _, distance = gcp.residuals(model, gcps.map_xy, image_xy)
+    model = transforms.fit_polynomial(gcps.map_xy, image_xy, 2)
+    _, _, distance = accuracy.residuals(model, gcps.map_xy, image_xy)
     rms = model.rms(gcps.map_xy, image_xy)
     np.testing.assert_allclose([bar.get_height() for bar in bars], distance)
     assert ax.get_legend().get_texts()[0].get_text() == f"RMS = {rms:.2f} px"
     assert ax.get_title() == f"degree 2: residuals after moving {gcps.ids[5]} by (+6.0, -4.5) px"
-    red = [i for i, bar in enumerate(bars) if np.allclose(bar.get_facecolor()[:3], (0.839, 0.153, 0.157),
-                                                          atol=0.01)]
+    red = [i for i, bar in enumerate(bars)
+           if np.allclose(bar.get_facecolor()[:3], (0.839, 0.153, 0.157), atol=0.01)]
     assert red == [5]
     with pytest.raises(ValueError, match="order"):
         widgets.gcp_explorer(gcps, order=4)
@@ -143,7 +144,8 @@ def test_ga_evolution_moves_through_the_kept_run():
     for description, value in (("population", 30), ("selection", "roulette"), ("mutation", 0.1),
                                ("elitism", 0.2)):
         changes_in_place(box, named[description], value)
-    rerun = matching.genetic_match(reference, adjustment, seed=0, population_size=30, generations=20,
+    rerun = matching.genetic_match(reference, adjustment, seed=0, population_size=30,
+                                   generations=20,
                                    elite_fraction=0.2, mutation_rate=0.1, selection="roulette",
                                    tournament_size=3)
     np.testing.assert_allclose(curves[1].get_ydata(), [h["mean"] for h in rerun.history[:13]])
@@ -167,7 +169,8 @@ def test_stretch_frame_and_evolution_frame_update_their_artists():
     evolution = widgets.draw_evolution_frame(reference, adjustment, truth, run.history[:1],
                                              generations=10)
     left, right = evolution.axes
-    widgets.draw_evolution_frame(reference, adjustment, truth, run.history, evolution, generations=10)
+    widgets.draw_evolution_frame(reference, adjustment, truth, run.history, evolution,
+                                 generations=10)
     assert evolution.axes == [left, right] and len(right.lines) == 3
     assert len(right.lines[0].get_xdata()) == 10 and left.get_title().startswith("generation 9:")
     assert figure_problems(evolution) == []
@@ -200,7 +203,9 @@ def test_frames_are_drawn_once_and_widget_figures_stay_out_of_jupyter_cells(monk
     with pytest.raises(ValueError, match="dpi"):
         widgets.render_png(figure, dpi=0)
     monkeypatch.undo()
-    # under the inline backend the widget's figure is not pyplot's, so the cell does not show it twice
-    monkeypatch.setattr(matplotlib, "get_backend", lambda: "module://matplotlib_inline.backend_inline")
+    # under the inline backend the widget's figure is not pyplot's, so the cell does not show it
+    # twice
+    monkeypatch.setattr(matplotlib, "get_backend",
+                        lambda: "module://matplotlib_inline.backend_inline")
     box = widgets.distortion_explorer()
     assert box.figure not in [plt.figure(number) for number in plt.get_fignums()]

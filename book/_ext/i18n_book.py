@@ -1,4 +1,4 @@
-"""The course in two languages: one English source, a Portuguese book built from gettext catalogues.
+"""The course in two languages: one English source, a Portuguese book from gettext catalogues.
 
 Loaded by both builds (``_config.yml`` and ``_config_pt.yml``):
 
@@ -74,7 +74,7 @@ class KeepDocstringsEnglish(SphinxTransform):
                 target["classes"].append("rsgeo-docstring")
 
 
-# -- Exercise titles -------------------------------------------------------------------------------
+# -- Exercise titles ---------------------------------------------------------------------------
 
 class TranslatableExerciseTitles(SphinxTransform):
     """Make sphinx-exercise's subtitles ("1.1 Earth-rotation skew of a CBERS frame") messages.
@@ -116,7 +116,7 @@ def catalogue_exercise_titles(app, doctree, docname):
             catalogue.add(text, MsgOrigin(source, line))
 
 
-# -- The table of contents' captions ----------------------------------------------------------------
+# -- The table of contents' captions -----------------------------------------------------------
 
 class TranslateInsertedToctrees(SphinxTransform):
     """Translate the toctrees that sphinx-external-toc inserts (the parts' captions of _toc.yml).
@@ -254,7 +254,7 @@ def _pattern(msgid):
 
 
 def translate_markdown(source, catalogue):
-    """``source`` (a Markdown cell) with every message of ``catalogue`` replaced by its translation.
+    """``source`` (a Markdown cell), each message of ``catalogue`` replaced by its translation.
 
     Longest messages first; a translated stretch is never searched again, so a short message
     ("Concept") cannot change the inside of a longer one already translated.
@@ -291,11 +291,12 @@ def language_cell(language):
 
 
 def translated_notebook(path, catalogue, language):
-    """The notebook at ``path`` with Portuguese Markdown cells and a first cell setting RSGEO_LANG."""
+    """The notebook at ``path``, its Markdown in Portuguese, its first cell setting RSGEO_LANG."""
     notebook = json.loads(Path(path).read_text(encoding="utf-8"))
     for cell in notebook["cells"]:
         if cell["cell_type"] == "markdown":
-            source = "".join(cell["source"]) if isinstance(cell["source"], list) else cell["source"]
+            source = cell["source"]
+            source = "".join(source) if isinstance(source, list) else source
             cell["source"] = translate_markdown(source, catalogue)
     notebook["cells"].insert(0, language_cell(language))
     return notebook

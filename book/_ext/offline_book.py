@@ -13,6 +13,9 @@ pages, so the repository keeps one copy of each font and no symbolic link.
 
 Launch buttons tell the truth: while ``repository.url`` in _config.yml is a placeholder (or
 empty), the book has no Binder, Colab or repository button and names no repository at all.
+
+Every kernel the build starts talks over Unix sockets and audits the figures it renders
+(:class:`AuditedKernelManager`, figure_audit.py): an unreadable figure fails the build.
 """
 
 import os
@@ -22,6 +25,8 @@ from pathlib import Path
 
 from jupyter_client.manager import AsyncKernelManager
 from nbclient import NotebookClient
+
+from figure_audit import KERNEL_ARGUMENTS  # beside this file, on the path as the book's _ext
 
 FONTS = Path("book") / "_vendor" / "widget-fonts"
 FONT_FOLDERS = ("@jupyter-widgets", "@jupyter-widgets/html-manager/dist")
@@ -57,17 +62,6 @@ def place_widget_fonts(app, exception):
                 shutil.copyfile(font, target / font.name)
 
 
-def audit_figures_in_kernels():
-    """The kernels this build starts inherit this process's environment: with
-    ``RSGEO_AUDIT_FIGURES`` set, ``import rsgeo`` checks every rendered figure
-    (rsgeo.plot.figure_problems) and writes each problem to standard error, which fails the
-    build (``stderr_output: remove-warn`` with ``-W``). The build's single execution of each
-    notebook is so also its figure check, and the tests read the build's cache
-    (tests/notebook_runner.py) instead of executing the notebooks again.
-    """
-    os.environ.setdefault("RSGEO_AUDIT_FIGURES", "1")
-
-
 class IPCKernelManager(AsyncKernelManager):
     """A kernel that talks over Unix sockets in a private folder, not TCP ports.
 
@@ -90,10 +84,24 @@ class IPCKernelManager(AsyncKernelManager):
     cleanup_resources = _async_cleanup_resources
 
 
+class AuditedKernelManager(IPCKernelManager):
+    """An :class:`IPCKernelManager` whose kernel audits every figure it renders.
+
+    The kernel runs the figure audit at its start-up (figure_audit.py, through IPython's
+    ``exec_lines``): each problem is written to standard error, which fails the build
+    (``stderr_output: remove-warn`` with ``-W``). The build's single execution of each notebook
+    is so also its figure check, and the tests read the build's cache (tests/notebook_runner.py)
+    instead of executing the notebooks again.
+    """
+
+    def format_kernel_cmd(self, extra_arguments=None):
+        return super().format_kernel_cmd([*(extra_arguments or []), *KERNEL_ARGUMENTS])
+
+
 def kernels_over_ipc():
     """Every notebook this process executes (myst-nb and jupyter-cache use nbclient) gets an
-    :class:`IPCKernelManager` unless told otherwise."""
-    NotebookClient._kernel_manager_class_default = lambda client: IPCKernelManager
+    :class:`AuditedKernelManager` unless told otherwise."""
+    NotebookClient._kernel_manager_class_default = lambda client: AuditedKernelManager
 
 
 def repository_configured(url):
@@ -124,7 +132,6 @@ def setup(app):
     app.connect("config-inited", honest_launch_buttons)
     app.connect("builder-inited", html_nodes_in_singlehtml)
     kernels_over_ipc()
-    audit_figures_in_kernels()
     app.connect("html-page-context", keep_scripts_once, priority=900)
     app.connect("build-finished", place_widget_fonts)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -26,9 +26,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._checks import as_image
+from .._checks import as_bands_first, as_image
+from ..errors import DataError, GridError
 from ..gcp import read_points
-from ..resample import check_bands_first
 
 __all__ = ["Raster", "available", "path", "load", "available_gcps", "load_gcps", "save",
            "available_terrain"]
@@ -89,11 +89,13 @@ _RASTERS = {**_DATASETS, **_TERRAIN}
 _GCP_FILES = {
     "cbers2b_ccd_hrc": (
         "cbers2b_ccd_hrc.points",
-        ["bend of a riparian forest strip at a field corner", "isolated clump of trees in a pasture",
+        ["bend of a riparian forest strip at a field corner",
+         "isolated clump of trees in a pasture",
          "small clump of trees (faint in the CCD)", "farm building in a fenced lot",
          "street crossing in the town", "north-east corner of a forest plot",
          "north-east corner of a forest plot", "tip of a bright field at a road",
-         "corner of a bright field in dark vegetation", "small dark plot (low contrast in the CCD)",
+         "corner of a bright field in dark vegetation",
+         "small dark plot (low contrast in the CCD)",
          "farmstead trees", "road at the corner of a forest remnant",
          "farmstead at a road crossing", "farm buildings on a track"]),
 }
@@ -228,9 +230,9 @@ def path(name):
         return _FOLDER / files[name]
     if name in files.values():
         return _FOLDER / name
-    raise ValueError(f"no shipped file named {name!r}; datasets: {', '.join(available())}; "
-                     f"GCP sets: {', '.join(available_gcps())}; "
-                     f"files: {', '.join(sorted(files.values()))}")
+    raise DataError(f"no shipped file named {name!r}; datasets: {', '.join(available())}; "
+                    f"GCP sets: {', '.join(available_gcps())}; "
+                    f"files: {', '.join(sorted(files.values()))}")
 
 
 def load(name):
@@ -253,8 +255,8 @@ def load(name):
     import rasterio
 
     if name not in _RASTERS:
-        raise ValueError(f"unknown dataset {name!r}; available: {', '.join(available())}; "
-                         f"terrain: {', '.join(available_terrain())}")
+        raise DataError(f"unknown dataset {name!r}; available: {', '.join(available())}; "
+                        f"terrain: {', '.join(available_terrain())}")
     file = _FOLDER / _RASTERS[name][0]
     with rasterio.open(file) as dataset:
         array = dataset.read()
@@ -319,7 +321,7 @@ def load_gcps(name):
         For an unknown name; the message lists the available ones.
     """
     if name not in _GCP_FILES:
-        raise ValueError(f"unknown GCP set {name!r}; available: {', '.join(available_gcps())}")
+        raise DataError(f"unknown GCP set {name!r}; available: {', '.join(available_gcps())}")
     file, notes = _GCP_FILES[name]
     gcps = read_points(_FOLDER / file)
     gcps.notes = list(notes)
@@ -374,7 +376,7 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
                                          raster_or_array.crs, raster_or_array.nodata)
     else:
         array = np.asarray(raster_or_array)
-    array = check_bands_first(as_image(array, "array"), "array")
+    array = as_bands_first(as_image(array, "array"), "array")
     transform = _as_affine(transform)
     bands = array if array.ndim == 3 else array[np.newaxis]
     with rasterio.open(file, "w", driver="GTiff", width=bands.shape[2], height=bands.shape[1],
@@ -395,7 +397,7 @@ def _as_affine(transform):
     except (TypeError, ValueError):
         values = None
     if values is None or len(values) != 6 or not np.isfinite(values).all():
-        raise ValueError(f"transform must be an affine.Affine or 6 finite numbers in GDAL's "
-                         f"order (x0, pixel width, row rotation, y0, column rotation, "
-                         f"pixel height), got {transform!r}")
+        raise GridError(f"transform must be an affine.Affine or 6 finite numbers in GDAL's "
+                        f"order (x0, pixel width, row rotation, y0, column rotation, "
+                        f"pixel height), got {transform!r}")
     return affine.Affine.from_gdal(*values)
