@@ -24,6 +24,7 @@ from .transforms import (
     PolynomialModel,
     _normalised_design,
     _rms_of,
+    _same_points,
     fit_transform,
     registered,
 )
@@ -53,6 +54,16 @@ def _pair(src, dst, what="GCPs"):
         raise GCPError(f"src and dst must hold the same {what}, got {len(src)} and {len(dst)} "
                        "points")
     return src, dst
+
+
+def _predicted_observed(predicted, observed, note=""):
+    """predicted and observed as (n, 2) arrays of the same shape (``note`` adds to the message)."""
+    predicted = as_points(predicted, "predicted")
+    observed = as_points(observed, "observed")
+    if predicted.shape != observed.shape:
+        raise GCPError(f"predicted and observed must have the same shape{note}, got "
+                       f"{predicted.shape} and {observed.shape}")
+    return predicted, observed
 
 
 def _as_flags(flags, name):
@@ -130,11 +141,7 @@ def rms_error(predicted, observed):
     >>> rms_error([[0, 0], [3, 4]], [[0, 0], [0, 0]])
     3.5355339059327378
     """
-    predicted = as_points(predicted, "predicted")
-    observed = as_points(observed, "observed")
-    if predicted.shape != observed.shape:
-        raise GCPError(f"predicted and observed must have the same shape, got {predicted.shape} "
-                       f"and {observed.shape}")
+    predicted, observed = _predicted_observed(predicted, observed)
     return _rms_of(predicted - observed)
 
 
@@ -172,11 +179,7 @@ def mean_error(predicted, observed, order, kind=None):
     >>> mean_error([[0, 0], [3, 4], [0, 0], [0, 0]], np.zeros((4, 2)), 1)
     5.0
     """
-    predicted = as_points(predicted, "predicted")
-    observed = as_points(observed, "observed")
-    if predicted.shape != observed.shape:
-        raise GCPError(f"predicted and observed must have the same shape (one row per GCP), "
-                       f"got {predicted.shape} and {observed.shape}")
+    predicted, observed = _predicted_observed(predicted, observed, " (one row per GCP)")
     entry = _registered(order, kind, "mean_error")
     n, m = len(predicted), entry.min_gcps
     if n <= m:
@@ -586,10 +589,7 @@ def compare_models(src, dst, is_check=None, models=GEOREFERENCER_MODELS):
     """
     import pandas as pd
 
-    src = as_points(src, "src")
-    dst = as_points(dst, "dst")
-    if len(src) != len(dst):
-        raise GCPError(f"src and dst must hold the same points, got {len(src)} and {len(dst)}")
+    src, dst = _same_points(src, dst)
     check = np.zeros(len(src), bool) if is_check is None else _as_flags(is_check, "is_check")
     if check.shape != (len(src),):
         raise GCPError(f"is_check needs one flag per point ({len(src)}), got shape {check.shape}")

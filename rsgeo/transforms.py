@@ -164,12 +164,18 @@ class GeometricModel:
         return _rms_of(predicted - as_points(dst, "dst"))
 
 
-def _residual_vectors(model, src, dst):
-    """model(src) and |model(src) - dst|, with the inputs checked."""
+def _same_points(src, dst):
+    """src and dst as (n, 2) arrays holding the same number of points."""
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
     if len(src) != len(dst):
         raise GCPError(f"src and dst must hold the same points, got {len(src)} and {len(dst)}")
+    return src, dst
+
+
+def _residual_vectors(model, src, dst):
+    """model(src) and |model(src) - dst|, with the inputs checked."""
+    src, dst = _same_points(src, dst)
     predicted = np.asarray(model(src), dtype=np.float64)
     if predicted.shape != dst.shape:
         raise GCPError(f"the model must return an (n, 2) array, got shape {predicted.shape}")

@@ -594,6 +594,18 @@ def _off_by(off, units=_PIXELS):
         distance=np.hypot(*off), units=_(units), direction=direction)
 
 
+def _position_verdict(declared, value, task, atol, correct, units=_PIXELS):
+    """The verdict on a (col, row) ``value``: ``correct`` (translated) within ``atol`` of the
+    right position; else which way it is off and the first declared mistake it shows (within
+    ``atol``), or the general hint."""
+    if np.allclose(value, task.right, rtol=0, atol=atol):
+        return Verdict(True, correct)
+    hints = declared.hints(value, task, lambda answer, wrong: np.allclose(
+        answer, wrong, rtol=0, atol=atol), exclude_right=np.allclose, first=True)
+    return Verdict(False, _off_by(value - task.right, units),
+                   hints[0] if hints else _(declared.general))
+
+
 def _first_hint(hints, general):
     """The hints found, joined, else the general hint (both translated)."""
     return " ".join(dict.fromkeys(hints)) or _(general)

@@ -4,7 +4,7 @@ import numpy as np
 
 from .. import terrain
 from .._i18n import N_, _
-from .engine import Declaration, Mistake, Verdict, _off_by, _two_numbers, _WrongForm, declare
+from .engine import Declaration, Mistake, _position_verdict, _two_numbers, _WrongForm, declare
 
 __all__ = ["check_displacement", "check_height_budget", "check_rpc_position"]
 
@@ -140,13 +140,6 @@ RPC_POSITION = Declaration(
     ))
 
 
-def _position_hint(declared, value, task, atol):
-    """The first declared mistake ``value`` shows, else the general hint (translated)."""
-    hints = declared.hints(value, task, lambda answer, wrong: np.allclose(
-        answer, wrong, rtol=0, atol=atol), exclude_right=np.allclose, first=True)
-    return hints[0] if hints else _(declared.general)
-
-
 @declare(RPC_POSITION)
 def check_rpc_position(position, rpc_mapping, lon, lat, height):
     """Reading an RPC: the image (col, row) of a ground point, GDAL's pixel convention.
@@ -182,7 +175,5 @@ def check_rpc_position(position, rpc_mapping, lon, lat, height):
     except _WrongForm as form:
         return form.verdict(_(RPC_POSITION.general))
     task = RPC_POSITION.task(rpc_mapping=rpc_mapping, lon=lon, lat=lat, height=height)
-    if np.allclose(value, task.right, rtol=0, atol=1e-3):
-        return Verdict(True, _("(col, row) is where the RPC puts the point."))
-    return Verdict(False, _off_by(value - task.right),
-                   _position_hint(RPC_POSITION, value, task, 1e-3))
+    return _position_verdict(RPC_POSITION, value, task, 1e-3,
+                             _("(col, row) is where the RPC puts the point."))

@@ -6,16 +6,9 @@ import numpy as np
 from .. import tiepoints
 from .._checks import as_shape
 from .._i18n import N_, _
-from .engine import Declaration, Mistake, Verdict, _off_by, _two_numbers, _WrongForm, declare
+from .engine import Declaration, Mistake, _position_verdict, _two_numbers, _WrongForm, declare
 
 __all__ = ["check_keypoint_position", "check_composed_tiepoint", "check_check_point_error"]
-
-
-def _first_position_hint(declared, value, task):
-    """The first declared mistake the (col, row) ``value`` shows, else the general hint."""
-    hints = declared.hints(value, task, lambda answer, wrong: np.allclose(
-        answer, wrong, rtol=0, atol=1e-6), exclude_right=np.allclose, first=True)
-    return hints[0] if hints else _(declared.general)
 
 
 KEYPOINT_POSITION = Declaration(
@@ -66,10 +59,8 @@ def check_keypoint_position(position, keypoint):
     except _WrongForm as form:
         return form.verdict(_(KEYPOINT_POSITION.general))
     task = KEYPOINT_POSITION.task(keypoint=keypoint)
-    if np.allclose(value, task.right, rtol=0, atol=1e-6):
-        return Verdict(True, _("(col, row) is the keypoint in GDAL's convention."))
-    return Verdict(False, _off_by(value - task.right),
-                   _first_position_hint(KEYPOINT_POSITION, value, task))
+    return _position_verdict(KEYPOINT_POSITION, value, task, 1e-6,
+                             _("(col, row) is the keypoint in GDAL's convention."))
 
 
 def _apply_affine(transform, point):
@@ -157,11 +148,9 @@ def check_composed_tiepoint(position, centre, shift, estimate, reference_transfo
         return form.verdict(_(COMPOSED_TIEPOINT.general))
     task = COMPOSED_TIEPOINT.task(centre=centre, shift=shift, estimate=estimate,
                                   reference_transform=reference_transform)
-    if np.allclose(value, task.right, rtol=0, atol=1e-6):
-        return Verdict(True, _("(col, row) is where the window's feature is in the moving "
-                               "image."))
-    return Verdict(False, _off_by(value - task.right, N_("moving-image pixels")),
-                   _first_position_hint(COMPOSED_TIEPOINT, value, task))
+    return _position_verdict(COMPOSED_TIEPOINT, value, task, 1e-6,
+                             _("(col, row) is where the window's feature is in the moving "
+                               "image."), N_("moving-image pixels"))
 
 
 def _grid_distances(task):
