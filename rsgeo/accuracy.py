@@ -499,53 +499,107 @@ def hull_coverage(points, width, height):
     return float(area / (width * height))
 
 
-def predicted_error_map(src, order, x, y, gcp_error=1.0):
+def predicted_error_map(src, order, x, y, gcp_error=1.0, kind=None, dst=None):
     """Standard deviation of the model's prediction over a grid, for GCP errors of ``gcp_error``.
 
-    For least squares with independent GCP errors of standard deviation σ, the
-    prediction at a point with terms a(x, y) has variance
+    For least squares with independent GCP errors of standard deviation σ, a
+    polynomial's prediction at a point with terms a(x, y) has variance
     σ² a(x, y)ᵀ (AᵀA)⁻¹ a(x, y): small among the GCPs, growing fast away
-    from them, faster for higher degrees. Polynomials only (the models linear
-    in their parameters whose design :func:`rsgeo.transforms.design_matrix` gives).
+    from them, faster for higher degrees. Any other kind is propagated the same
+    way through its fit: the prediction at a point responds to each GCP's dst
+    coordinate with a weight w_i (the fit of a unit error at that GCP alone),
+    and its variance is σ² Σ w_i². That is exact for the kinds whose fit is
+    linear in dst (linear, Helmert, thin-plate spline; for polynomials it equals
+    the formula above) and first order for a projective model, whose weights
+    depend on ``dst`` (given).
 
     Parameters
     ----------
     src : (n, 2) array_like
         GCP positions in the model's input coordinates.
-    order : {1, 2, 3}
+    order : {1, 2, 3} or str or None
+        Degree of the polynomial, or the name of another kind ("tps").
     x, y : ndarray
         Grid of positions (same units as src), any shape.
     gcp_error : float
-        σ, the standard deviation of one GCP's error (dst units).
+        σ, the standard deviation of one GCP's error (dst units), on each axis.
+    kind : str, optional
+        As :func:`rsgeo.transforms.fit_transform`; then ``order`` is only for
+        ``kind="polynomial"``.
+    dst : (n, 2) array_like, optional
+        The GCPs' dst positions: needed by a projective model only.
 
     Returns
     -------
     ndarray, shape of x
-        Predicted standard deviation of the model at each position.
+        Predicted standard deviation of the model at each position, per axis
+        (the root mean of the two axes' variances; for a polynomial both are
+        equal).
 
     Raises
     ------
     GCPError
-        If x and y differ in shape, gcp_error is negative, or the GCPs do not
-        determine the polynomial.
+        If x and y differ in shape, gcp_error is negative, the GCPs do not
+        determine the model, or a projective model is given no ``dst``.
 
     References
     ----------
     Draper, N. R. and Smith, H., *Applied Regression Analysis*, the
     variance of a predicted mean response, Var(ŷ₀) = σ² x₀ᵀ(XᵀX)⁻¹x₀.
+
+    Examples
+    --------
+    >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10]], dtype=float)
+    >>> x, y = np.array([5.0, 20.0]), np.array([5.0, 20.0])
+    >>> predicted_error_map(src, 1, x, y).round(3)      # centre, then far outside
+    array([0.5  , 2.179])
+    >>> predicted_error_map(src, "helmert", x, y).round(3)
+    array([0.5  , 1.581])
     """
     gcp_error = check_range(gcp_error, "gcp_error", low=0, why="a standard deviation in dst units")
     if np.shape(x) != np.shape(y):
         raise GridError(f"x and y must have the same shape, got {np.shape(x)} and {np.shape(y)}")
-    matrix, origin, scale = _normalised_design(as_points(src, "src"), order)
+    src = as_points(src, "src")
+    entry = _registered(order, kind, "predicted_error_map")
+    grid = np.column_stack([np.ravel(x), np.ravel(y)])
+    if entry.kind != "polynomial":
+        if entry.kind == "projective" and dst is None:
+            raise GCPError("a 'projective' model's predicted error depends on where its GCPs go: "
+                           "pass dst, the GCPs' dst positions")
+        dst = None if dst is None else _pair(src, dst)[1]
+        deviation = _propagated_deviation(entry.fit, src, grid, dst)
+        return (gcp_error * deviation).reshape(np.shape(x))
+    order = entry.order
+    matrix, origin, scale = _normalised_design(src, order)
     if np.linalg.matrix_rank(matrix) < matrix.shape[1]:
         raise GCPError(f"the GCPs do not determine an order-{order} polynomial (collinear or "
                        "too few)")
     normal_inverse = np.linalg.inv(matrix.T @ matrix)
-    grid = np.column_stack([np.ravel(x), np.ravel(y)])
     terms, _, _ = _normalised_design(grid, order, origin, scale)
     variance = np.einsum("ij,jk,ik->i", terms, normal_inverse, terms)
     return (gcp_error * np.sqrt(variance)).reshape(np.shape(x))
+
+
+def _propagated_deviation(fit, src, grid, dst=None):
+    """Per-axis standard deviation at ``grid`` of the model ``fit`` makes of ``src``, for unit
+    GCP errors: the root mean over both axes of Σ_i w_i², w_i the prediction's response to GCP
+    i's dst coordinate. Without ``dst`` the fit must be linear in dst: w_i is the model fitted to
+    a unit error at that coordinate alone. With ``dst``, w_i is a finite difference around it."""
+    if dst is None:
+        base, step = np.zeros_like(src), 1.0
+        at_base = np.zeros_like(grid)
+    else:
+        base = dst
+        step = 1e-6 * max(1.0, float(np.abs(dst - dst.mean(axis=0)).max()))
+        at_base = fit(src, base)(grid)
+    variance = np.zeros(len(grid))
+    for i in range(len(src)):
+        for axis in (0, 1):
+            moved = base.copy()
+            moved[i, axis] += step
+            response = (fit(src, moved)(grid) - at_base) / step
+            variance += np.sum(response**2, axis=1)
+    return np.sqrt(variance / 2)
 
 
 # --- Every model at once -------------------------------------------------------------------------

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from rsgeo import accuracy, data, gcp, transforms
+from rsgeo.errors import GCPError
 from rsgeo.resample import grid_positions
 
 from gdal_reference import gdal_map_to_image
@@ -221,3 +222,42 @@ def test_mean_error_of_other_kinds_divides_by_their_degrees_of_freedom():
         predicted, observed, 1, kind="polynomial")
     with pytest.raises(ValueError, match="needs more than 4 GCPs"):
         accuracy.mean_error(predicted, observed, "projective")
+
+
+def test_predicted_error_of_any_kind_is_the_polynomials_formula_for_polynomials():
+    # the propagation every other kind uses gives the analytic σ²a(AᵀA)⁻¹a for polynomials
+    from rsgeo.accuracy import _propagated_deviation
+
+    rng = np.random.default_rng(0)
+    src = rng.uniform(0, 1000, (12, 2)) + [5e5, 7e6]
+    x, y = np.meshgrid(np.linspace(5e5 - 500, 5e5 + 1500, 7),
+                       np.linspace(7e6 - 500, 7e6 + 1500, 5))
+    grid = np.column_stack([x.ravel(), y.ravel()])
+    for order in (1, 2, 3):
+        analytic = accuracy.predicted_error_map(src, order, x, y).ravel()
+        propagated = _propagated_deviation(transforms.registered(order).fit, src, grid)
+        np.testing.assert_allclose(propagated, analytic, rtol=1e-9)
+
+
+@pytest.mark.parametrize("kind", ["linear", "helmert", "projective", "tps"])
+def test_predicted_error_of_any_kind_matches_simulated_gcp_errors(kind):
+    # an independent check: fit the model to many sets of GCPs with errors of σ and measure the
+    # spread of its predictions; the map must say the same (to the sampling error of 2,000 fits)
+    rng = np.random.default_rng(1)
+    src = rng.uniform(0, 1000, (10, 2))
+    dst = src * [0.05, -0.05] + [10, 80] + np.where(kind == "projective", 1e-5, 0) * src**2
+    points = np.array([[500.0, 500.0], [100.0, 900.0], [1400.0, -300.0]])
+    sigma = 0.01 if kind == "projective" else 0.5
+    fit = transforms.registered(kind).fit
+    predictions = np.array([fit(src, dst + rng.normal(0, sigma, dst.shape))(points)
+                            for _ in range(2000)])
+    simulated = np.sqrt(predictions.var(axis=0).mean(axis=1))      # per axis, both averaged
+    predicted = accuracy.predicted_error_map(src, kind, points[:, 0], points[:, 1], sigma,
+                                             dst=dst)
+    np.testing.assert_allclose(predicted, simulated, rtol=0.06)
+
+
+def test_a_projective_error_map_needs_the_dst_points():
+    src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 2]], dtype=float)
+    with pytest.raises(GCPError, match="pass dst"):
+        accuracy.predicted_error_map(src, "projective", np.zeros(2), np.zeros(2))
