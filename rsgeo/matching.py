@@ -630,7 +630,7 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     elite_count = max(1, int(round(elite_fraction * population_size))) if elite_fraction > 0 else 0
     history, evaluations = [], 0
     best_solution, best_fitness, improved = None, -np.inf, 0
-    for _ in range(generations):
+    for _generation in range(generations):
         labels = labels_of(population)
         scores = _fitness_kernel(labels, reference.areas, reference.distances, adjustment.areas,
                                  adjustment.centroids, alpha, variant == "compact", spread_limit)
@@ -728,8 +728,8 @@ def exhaustive_match(reference, adjustment, alpha=0.5, one_to_one=None, batch=20
                          f"reference ones ({m})")
     if one_to_one:
         candidates = permutations(range(1, m + 1), n)
-        chunks = (np.array([c for _, c in zip(range(batch), candidates)], dtype=np.intp)
-                  for _ in range(-(-factorial(m) // factorial(m - n) // batch)))
+        chunks = (np.array([c for _index, c in zip(range(batch), candidates)], dtype=np.intp)
+                  for _chunk in range(-(-factorial(m) // factorial(m - n) // batch)))
     else:
         # every solution is a number in base m + 1, its digits the labels (most significant first)
         total, powers = (m + 1) ** n, (m + 1) ** np.arange(n - 1, -1, -1)
@@ -952,7 +952,7 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
                          f"adjustment ({n}) segments")
     rng = np.random.default_rng(seed)
     best_solution, best_fitness = None, -np.inf
-    for _ in range(restarts):
+    for _restart in range(restarts):
         result = quadratic_assignment(adjustment.distances, reference.distances, method="faq",
                                       options={"maximize": True, "P0": "randomized", "rng": rng})
         solution = result.col_ind + 1
