@@ -12,7 +12,7 @@ from .errors import GCPError, GridError, ImageError, RsgeoError
 
 __all__ = [
     "as_points", "as_image", "as_bands_first", "as_nodata", "as_shape", "as_scale",
-    "as_resolution", "as_num_threads", "check_range", "check_choice",
+    "as_resolution", "as_num_threads", "as_number", "as_integer", "check_choice",
 ]
 
 
@@ -341,13 +341,22 @@ def as_num_threads(num_threads):
     return int(num_threads)
 
 
-def check_range(value, name, low=None, high=None, why=""):
-    """Return ``value`` as a float, checked to be finite and within [low, high].
+def _bounds_text(low, high):
+    if low is not None and high is not None:
+        return f"[{low}, {high}]"
+    return f">= {low}" if low is not None else f"<= {high}"
+
+
+def as_number(value, name, low=None, high=None, why=""):
+    """Return ``value`` as a float, checked to be a real, finite number within [low, high].
+
+    A string, a bool or a complex number is not taken for a number (``float("2")`` and
+    ``float(True)`` would be): it raises ``TypeError``.
 
     Parameters
     ----------
     value : float
-        The number to check.
+        The number to check (a Python or NumPy real number, or a 0-d array of one).
     name : str
         Its name in the error message.
     low, high : float, optional
@@ -362,20 +371,78 @@ def check_range(value, name, low=None, high=None, why=""):
 
     Raises
     ------
+    TypeError
+        If ``value`` is not a real number (a string, a bool, a complex, a sequence).
     rsgeo.errors.RsgeoError
         If ``value`` is not finite or lies outside the bounds.
+
+    Examples
+    --------
+    >>> as_number(np.float32(2.5), "tolerance", low=0)
+    2.5
+    >>> as_number("2.5", "tolerance")
+    Traceback (most recent call last):
+    ...
+    TypeError: tolerance must be a number, got str '2.5'
     """
-    number = float(value)
+    array = np.asarray(value) if not isinstance(value, (str, bytes)) else None
+    if (array is None or array.ndim != 0 or isinstance(value, (bool, np.bool_))
+            or not np.issubdtype(array.dtype, np.number)
+            or np.issubdtype(array.dtype, np.complexfloating)):
+        raise TypeError(_("{name} must be a number, got {kind} {value!r}").format(
+            name=name, kind=type(value).__name__, value=value))
+    number = float(array)
     if not np.isfinite(number):
         raise RsgeoError(_("{name} must be a finite number, got {value!r}").format(
             name=name, value=value))
     if (low is not None and number < low) or (high is not None and number > high):
-        bounds = f"[{low}, {high}]" if low is not None and high is not None else (
-            f">= {low}" if low is not None else f"<= {high}")
         reason = f" ({why})" if why else ""
         raise RsgeoError(_("{name} must be {bounds}{reason}, got {value!r}").format(
-            name=name, bounds=bounds, reason=reason, value=value))
+            name=name, bounds=_bounds_text(low, high), reason=reason, value=value))
     return number
+
+
+def as_integer(value, name, low=None, high=None, why=""):
+    """Return ``value`` as an int, checked to be a whole number within [low, high].
+
+    Parameters
+    ----------
+    value : int
+        The integer to check (a Python or NumPy integer, or a float with no fractional part,
+        such as 3.0); not a bool, a string, or a float such as 2.5.
+    name : str
+        Its name in the error message.
+    low, high : int, optional
+        The bounds, inclusive; None for none.
+    why : str
+        Said in parentheses after the bounds.
+
+    Returns
+    -------
+    int
+        ``value`` as an int.
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number (see :func:`as_number`).
+    rsgeo.errors.RsgeoError
+        If ``value`` has a fractional part or lies outside the bounds.
+
+    Examples
+    --------
+    >>> as_integer(np.int64(3), "iterations", low=1)
+    3
+    >>> as_integer(2.5, "iterations", low=1)
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.RsgeoError: iterations must be a whole number, got 2.5
+    """
+    number = as_number(value, name)
+    if number != int(number):
+        raise RsgeoError(_("{name} must be a whole number, got {value!r}").format(
+            name=name, value=value))
+    return int(as_number(int(number), name, low, high, why))
 
 
 def check_choice(value, name, choices):

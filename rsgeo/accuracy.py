@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._checks import as_points, as_shape, check_range
+from ._checks import as_number, as_points, as_shape
 from .errors import GCPError, GridError, ModelError
 from .transforms import (
     GEOREFERENCER_MODELS,
@@ -487,8 +487,8 @@ def hull_coverage(points, width, height):
     from scipy.spatial import ConvexHull, QhullError
 
     points = as_points(points)
-    width = check_range(width, "width", low=0, why="the image's width in pixels")
-    height = check_range(height, "height", low=0, why="the image's height in pixels")
+    width = as_number(width, "width", low=0, why="the image's width in pixels")
+    height = as_number(height, "height", low=0, why="the image's height in pixels")
     if width == 0 or height == 0:
         raise GridError(f"width and height must be positive (pixels), got {width} and {height}")
     clipped = np.clip(points, [0, 0], [width, height])
@@ -556,7 +556,7 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0, kind=None, dst=None):
     >>> predicted_error_map(src, "helmert", x, y).round(3)
     array([0.5  , 1.581])
     """
-    gcp_error = check_range(gcp_error, "gcp_error", low=0, why="a standard deviation in dst units")
+    gcp_error = as_number(gcp_error, "gcp_error", low=0, why="a standard deviation in dst units")
     if np.shape(x) != np.shape(y):
         raise GridError(f"x and y must have the same shape, got {np.shape(x)} and {np.shape(y)}")
     src = as_points(src, "src")

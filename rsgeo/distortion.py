@@ -12,7 +12,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ._checks import as_points, as_shape, check_range
+from ._checks import as_number, as_points, as_shape
 from .errors import GridError, ModelError, RsgeoError
 from .resample import grid_positions, interpolate
 from .transforms import GeometricModel, InverseModel
@@ -54,7 +54,7 @@ def orbital_rate(altitude_km):
     ----------
     Kepler's third law for a circular orbit, GM = 398600.4418 km³/s².
     """
-    altitude_km = check_range(altitude_km, "altitude_km", low=1e-9,
+    altitude_km = as_number(altitude_km, "altitude_km", low=1e-9,
                               why="the satellite flies above the ground")
     return float(np.sqrt(GM_KM3_S2 / (EARTH_RADIUS_KM + altitude_km) ** 3))
 
@@ -105,8 +105,8 @@ def track_angle(latitude_deg, inclination_deg=98.2):
     Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
     Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
     """
-    latitude = np.radians(check_range(latitude_deg, "latitude_deg", -90, 90, "a latitude"))
-    inclination = np.radians(check_range(inclination_deg, "inclination_deg", 0, 180))
+    latitude = np.radians(as_number(latitude_deg, "latitude_deg", -90, 90, "a latitude"))
+    inclination = np.radians(as_number(inclination_deg, "inclination_deg", 0, 180))
     sine = abs(np.cos(inclination)) / np.cos(latitude) if np.cos(latitude) > 0 else np.inf
     if sine > 1:
         reach = 90 - abs(90 - np.degrees(inclination))
@@ -189,7 +189,7 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0,
     True
     """
     _check_pass(pass_direction)
-    check_range(frame_length_km, "frame_length_km", low=0, why="a length")
+    as_number(frame_length_km, "frame_length_km", low=0, why="a length")
     zeta = np.radians(track_angle(latitude_deg, inclination_deg))
     imaging_time = frame_length_km / ground_track_speed(altitude_km)
     surface_speed = EARTH_ROTATION_RAD_S * EQUATORIAL_RADIUS_KM * np.cos(np.radians(latitude_deg))
@@ -277,7 +277,7 @@ def frame_outline(latitude_deg, frame_length_km, width_km, altitude_km=705.0, in
     >>> round(float(np.hypot(east[2] - east[1], north[2] - north[1])), 1)   # along-track side
     185.0
     """
-    check_range(width_km, "width_km", low=0, why="a width")
+    as_number(width_km, "width_km", low=0, why="a width")
     offset = np.array(earth_rotation_offset(latitude_deg, frame_length_km, altitude_km,
                                             inclination_deg,
                                             pass_direction))
@@ -330,7 +330,7 @@ def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclina
     """
     if int(lines) != lines or lines < 1:
         raise RsgeoError(f"lines must be a positive whole number, got {lines!r}")
-    check_range(pixel_size_km, "pixel_size_km", low=1e-12, why="a size")
+    as_number(pixel_size_km, "pixel_size_km", low=1e-12, why="a size")
     offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km,
                                     inclination_deg,
                                     pass_direction)
@@ -368,7 +368,7 @@ def skew_angle(latitude_deg, altitude_km=705.0, inclination_deg=98.2):
 
 def _check_scan(scan_angle_deg, altitude_km):
     theta = np.radians(np.asarray(scan_angle_deg, dtype=np.float64))
-    check_range(altitude_km, "altitude_km", low=1e-9, why="the satellite flies above the ground")
+    as_number(altitude_km, "altitude_km", low=1e-9, why="the satellite flies above the ground")
     if not np.isfinite(theta).all():
         raise RsgeoError("scan_angle_deg must be finite")
     horizon = np.arcsin(EARTH_RADIUS_KM / (EARTH_RADIUS_KM + altitude_km))
@@ -520,7 +520,7 @@ def pixel_size(scan_angle_deg, altitude_km, nadir_pixel_km=1.0, curved_earth=Tru
     >>> round(float(along), 2), round(float(across), 2)
     (2.01, 4.83)
     """
-    check_range(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
+    as_number(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
     theta = _check_scan(scan_angle_deg, altitude_km)
     ifov = nadir_pixel_km / altitude_km
     if not curved_earth:
@@ -742,7 +742,7 @@ def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0
     """
     if int(detectors) != detectors or detectors < 1:
         raise RsgeoError(f"detectors must be a positive whole number, got {detectors!r}")
-    check_range(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
+    as_number(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
     theta = _check_scan(scan_angle_deg, altitude_km)
     half = detectors * nadir_pixel_km / altitude_km / 2
     first = _ground_point(altitude_km, theta, epsilon=-half, curved_earth=curved_earth)
@@ -908,7 +908,7 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
     shape: tuple = None
 
     def __post_init__(self):
-        check_range(self.scale, "scale", low=1e-6, why="a ratio of altitudes")
+        as_number(self.scale, "scale", low=1e-6, why="a ratio of altitudes")
         if self.shape is not None:
             self.shape = as_shape(self.shape)
         if (self.view_altitude_km is None) != (self.nadir_pixel_km is None):

@@ -50,7 +50,7 @@ import numpy as np
 from numba import njit
 
 from . import gcp, tiepoints
-from ._checks import as_points, check_choice, check_range
+from ._checks import as_number, as_points, check_choice
 from .errors import GCPError, RsgeoError
 
 __all__ = [
@@ -165,7 +165,7 @@ def fitness_batch(solutions, reference, adjustment, alpha=0.5, variant="paper"):
     >>> fitness_batch([[1, 2, 3], [2, 1, 3]], ref, ref).round(4).tolist()
     [1.0, 0.7587]
     """
-    alpha = check_range(alpha, "alpha", 0, 1, "the weight of size against layout")
+    alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
     check_choice(variant, "variant", VARIANTS)
     m, n = len(reference), len(adjustment)
     solutions = _as_solutions(solutions, n, m)
@@ -591,14 +591,14 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     >>> bool((result.solution == truth).all())
     True
     """
-    alpha = check_range(alpha, "alpha", 0, 1, "the weight of size against layout")
+    alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
     check_choice(variant, "variant", VARIANTS)
     check_choice(selection, "selection", ("tournament", "roulette"))
     check_choice(encoding, "encoding", ("binary", "integer"))
     if crossover is None:
         crossover = "one-point" if encoding == "binary" else "uniform"
     check_choice(crossover, "crossover", ("one-point", "uniform"))
-    check_range(elite_fraction, "elite_fraction", 0, 1)
+    as_number(elite_fraction, "elite_fraction", 0, 1)
     if int(population_size) < 2 or int(generations) < 1:
         raise RsgeoError(f"population_size must be at least 2 and generations at least 1, "
                          f"got {population_size} and {generations}")
@@ -608,13 +608,13 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     if stall_generations is not None and int(stall_generations) < 1:
         raise RsgeoError("stall_generations must be at least 1 (or None to run every "
                          f"generation), got {stall_generations}")
-    check_range(crossover_rate, "crossover_rate", 0, 1, "a probability")
+    as_number(crossover_rate, "crossover_rate", 0, 1, "a probability")
     rng = np.random.default_rng(seed)
     m, n = len(reference), len(adjustment)
     genes_per_individual = n * BITS_PER_GENE if encoding == "binary" else n
     if mutation_rate is None:
         mutation_rate = 0.04 if encoding == "binary" else 0.1
-    check_range(mutation_rate, "mutation_rate", 0, 1)
+    as_number(mutation_rate, "mutation_rate", 0, 1)
 
     spread_limit = COMPACT_SPREAD * (1 + 1e-9)
 
@@ -799,7 +799,7 @@ def optimum_match(reference, adjustment, alpha=0.5, variant="paper", incumbent=N
     >>> best.solution.tolist(), best.optimal
     ([3, 1, 2], True)
     """
-    alpha = check_range(alpha, "alpha", 0, 1, "the weight of size against layout")
+    alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
     check_choice(variant, "variant", VARIANTS)
     m, n = len(reference), len(adjustment)
     order = np.argsort(-adjustment.areas, kind="stable")
@@ -1045,7 +1045,7 @@ def true_matching(reference_xy, adjustment_xy, tolerance):
     """
     reference_xy = as_points(reference_xy, "reference_xy")
     adjustment_xy = as_points(adjustment_xy, "adjustment_xy")
-    tolerance = check_range(tolerance, "tolerance", 0, None, "a distance")
+    tolerance = as_number(tolerance, "tolerance", 0, None, "a distance")
     difference = adjustment_xy[:, np.newaxis] - reference_xy[np.newaxis]
     distances = np.hypot(difference[..., 0], difference[..., 1])
     nearest, distance = distances.argmin(axis=1), distances.min(axis=1)

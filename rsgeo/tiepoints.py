@@ -29,7 +29,7 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from . import accuracy, gcp, resample, transforms
-from ._checks import as_image, as_shape, check_choice, check_range
+from ._checks import as_image, as_number, as_shape, check_choice
 from .errors import GCPError, GridError, ImageError, ModelError
 
 __all__ = [
@@ -365,7 +365,7 @@ def robust_fit(src, dst, kind="polynomial", order=1, threshold=1.0, max_trials=1
         what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
         raise GCPError(f"{what} needs at least {model_class.min_samples} tie points, "
                        f"got {len(src)}")
-    check_range(threshold, "threshold", 0, None, "a residual in dst units")
+    as_number(threshold, "threshold", 0, None, "a residual in dst units")
     model, inliers = ransac((src, dst), model_class, model_class.min_samples, threshold,
                             max_trials=int(max_trials), rng=np.random.default_rng(seed))
     if not model or inliers is None or inliers.sum() < model_class.min_samples:
@@ -495,7 +495,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
             raise ImageError(f"{name} holds NaN or infinite values; fill them and mark them "
                              "with valid=False")
     check_choice(method, "method", ("nearest", "bilinear", "cubic"))
-    iterations = int(check_range(iterations, "iterations", 1, None, "a number of passes"))
+    iterations = int(as_number(iterations, "iterations", 1, None, "a number of passes"))
     transform = _transform(reference_transform)
     estimate = ~transform if initial is None else initial
     if valid is None:
@@ -631,7 +631,7 @@ def feature_tiepoints(reference, moving, detector="sift", reference_transform=No
         if not np.isfinite(image).all() or image.std() == 0:
             raise ImageError(f"{name} is constant or holds NaN: no keypoint can be found in it")
         images.append(image)
-    check_range(max_ratio, "max_ratio", 0, 1, "a ratio of descriptor distances")
+    as_number(max_ratio, "max_ratio", 0, 1, "a ratio of descriptor distances")
     transform = _transform(reference_transform)
     found = []
     for image in images:

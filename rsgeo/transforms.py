@@ -30,7 +30,7 @@ from math import comb
 import numpy as np
 from scipy.interpolate import RBFInterpolator
 
-from ._checks import as_points, check_range
+from ._checks import as_number, as_points
 from ._i18n import _
 from .errors import GCPError, ModelError
 
@@ -284,7 +284,7 @@ def newton_inverse(model, start, tolerance, max_iterations, failure):
     array([[3., 7.]])
     """
     extent = float(np.abs(model.dst - model.dst.mean(axis=0)).max()) or 1.0
-    limit = check_range(tolerance, "tolerance", low=0, why="relative to the dst extent") * extent
+    limit = as_number(tolerance, "tolerance", low=0, why="relative to the dst extent") * extent
 
     def solve(targets):
         points = start(targets)
@@ -955,7 +955,7 @@ class TPSModel(GeometricModel):
             If the points are not (n, 2) finite numbers.
         """
         points = as_points(points)
-        h = check_range(step, "step", low=1e-12, high=1e-1) * (
+        h = as_number(step, "step", low=1e-12, high=1e-1) * (
             float(np.abs(self.src - self.src.mean(axis=0)).max()) or 1.0)
         columns = []
         for axis in range(2):

@@ -19,7 +19,7 @@ import weakref
 import numpy as np
 
 from . import accuracy, distortion, matching, radiometry, transforms
-from ._checks import check_choice, check_range
+from ._checks import as_number, check_choice
 from .errors import GCPError, GridError, RsgeoError
 from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
 
@@ -535,7 +535,7 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
 
     labels = [label for label, _, _ in transforms.GEOREFERENCER_MODELS]
     check_choice(model, "model", labels)
-    exaggeration = check_range(exaggeration, "exaggeration", low=1, high=50)
+    exaggeration = as_number(exaggeration, "exaggeration", low=1, high=50)
     enabled = np.asarray(getattr(gcps, "enabled", np.ones(len(gcps), bool)), bool)
     map_xy, image_xy = gcps.map_xy[enabled], gcps.image_xy[enabled]
     low, high = map_xy.min(axis=0), map_xy.max(axis=0)
