@@ -8,11 +8,13 @@ sees the cause of an error at the line they wrote, not a traceback from deep ins
 import numpy as np
 
 from ._i18n import _
-from .errors import GCPError, GridError, ImageError, RsgeoError
+from .errors import CRSError, GCPError, GridError, ImageError, RsgeoError
 
 __all__ = [
     "as_points", "as_image", "as_bands_first", "as_nodata", "as_shape", "as_scale",
     "as_resolution", "as_num_threads", "as_number", "as_integer", "check_choice",
+    "as_crs",
+    "as_output_shape", "as_affine", "memory_bytes",
 ]
 
 
@@ -470,4 +472,170 @@ def check_choice(value, name, choices):
     if value not in choices:
         raise RsgeoError(_("unknown {name} {value!r}; choose one of {choices}").format(
             name=name, value=value, choices=", ".join(map(repr, choices))))
+    return value
+
+
+def memory_bytes():
+    """The machine's physical memory in bytes, or None where the OS does not say.
+
+    Returns
+    -------
+    int or None
+        ``SC_PAGE_SIZE`` times ``SC_PHYS_PAGES`` (POSIX ``sysconf``).
+    """
+    import os
+
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def as_output_shape(shape, dtype, bands=1, name="shape", limit=None):
+    """Return an output grid's (rows, cols), refused before allocating if it cannot fit.
+
+    An output array is allocated whole (a warp keeps input + output + one
+    strip), so a grid whose array alone is larger than the machine's physical
+    memory can only end in a MemoryError after minutes of swapping, or in
+    the operating system killing Python. The limit is that memory (not a
+    fixed count of pixels: 2**31 float64 pixels need 16 GiB, which some
+    machines have and others do not).
+
+    Parameters
+    ----------
+    shape : (rows, cols)
+        The output grid size, as :func:`as_shape` takes it.
+    dtype : numpy dtype or str
+        The output's dtype.
+    bands : int
+        Bands of the output.
+    name : str
+        Its name in the error message.
+    limit : int, optional
+        Largest output in bytes; the machine's physical memory by default
+        (no limit where the OS does not say).
+
+    Returns
+    -------
+    (int, int)
+        Rows and columns.
+
+    Raises
+    ------
+    rsgeo.errors.GridError
+        If ``shape`` is not two positive integers, or the output would take
+        more bytes than ``limit``; the message gives its size in GiB and the
+        fix (a coarser resolution, or a window of the grid).
+
+    Examples
+    --------
+    >>> as_output_shape((351, 369), np.uint8)
+    (351, 369)
+    >>> as_output_shape((10**6, 10**6), np.float32)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.GridError: the output (shape=(1000000, 1000000), 1 band(s) of float32) ...
+    """
+    rows, cols = as_shape(shape, name)
+    dtype = np.dtype(dtype)
+    limit = memory_bytes() if limit is None else limit
+    needed = float(rows) * float(cols) * bands * dtype.itemsize
+    if limit is not None and needed > limit:
+        raise GridError(_(
+            "the output ({name}=({rows}, {cols}), {bands} band(s) of {dtype}) would take "
+            "{gib:.1f} GiB, more than the {limit:.1f} GiB this machine has; choose a coarser "
+            "resolution (fewer, larger pixels) or warp a window of the grid at a time"
+        ).format(name=name, rows=rows, cols=cols, bands=bands, dtype=dtype,
+                 gib=needed / 2 ** 30, limit=limit / 2 ** 30))
+    return rows, cols
+
+
+def as_affine(transform, name="transform"):
+    """Return ``transform`` if it is a finite ``affine.Affine``, else raise.
+
+    A GDAL geotransform, a 6-tuple (c, a, b, f, d, e), is not taken for one:
+    ``affine.Affine(*t)`` would read it in another order without a word.
+
+    Parameters
+    ----------
+    transform : affine.Affine
+        A geotransform (pixel corner -> map) or its inverse.
+    name : str
+        Its name in the error message.
+
+    Returns
+    -------
+    affine.Affine
+        ``transform``.
+
+    Raises
+    ------
+    TypeError
+        If ``transform`` is not an ``affine.Affine`` (the message says how to
+        convert a GDAL 6-tuple: ``affine.Affine.from_gdal(*t)``).
+    rsgeo.errors.GridError
+        If it holds NaN or infinity.
+
+    Examples
+    --------
+    >>> import affine
+    >>> as_affine(affine.Affine.identity()) == affine.Affine.identity()
+    True
+    >>> as_affine((0.0, 1.0, 0.0, 0.0, 0.0, -1.0))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    TypeError: transform must be an affine.Affine, got tuple ...
+    """
+    import affine
+
+    if not isinstance(transform, affine.Affine):
+        raise TypeError(_(
+            "{name} must be an affine.Affine, got {kind} {value!r}; for a GDAL geotransform "
+            "(c, a, b, f, d, e) use affine.Affine.from_gdal(*{name}), for rasterio's order "
+            "(a, b, c, d, e, f) affine.Affine(*{name})").format(
+                name=name, kind=type(transform).__name__, value=transform))
+    if not np.isfinite(np.asarray(transform[:6], dtype=np.float64)).all():
+        raise GridError(_("{name} holds NaN or infinity: {value!r}; every coefficient of a "
+                          "geotransform must be finite").format(name=name, value=transform))
+    return transform
+
+
+def as_crs(crs, name="crs"):
+    """A rasterio CRS from a code, a string or a CRS, refusing one PROJ does not know.
+
+    Parameters
+    ----------
+    crs : str, int or rasterio.crs.CRS
+        ``"EPSG:29193"``, ``29193``, a WKT or PROJ string, or a CRS.
+    name : str
+        The argument's name, for the error message.
+
+    Returns
+    -------
+    rasterio.crs.CRS
+
+    Raises
+    ------
+    ValueError
+        If ``crs`` is None or PROJ does not recognise it.
+
+    Examples
+    --------
+    >>> as_crs(31983).to_epsg()
+    31983
+    """
+    from rasterio.crs import CRS
+    from rasterio.errors import CRSError as RasterioCRSError
+
+    if crs is None:
+        raise CRSError(f"{name} is None; a CRS is needed, e.g. 'EPSG:31983' "
+                       "(SIRGAS 2000 / UTM zone 23S)")
+    if isinstance(crs, CRS):
+        return crs
+    try:
+        value = (CRS.from_epsg(crs) if isinstance(crs, (int, np.integer))
+                 else CRS.from_user_input(crs))
+    except (RasterioCRSError, TypeError, ValueError) as error:
+        raise CRSError(f"{name} {crs!r} is not a CRS that PROJ knows ({error}); give an EPSG "
+                       "code such as 'EPSG:31983', a WKT or a PROJ string") from None
     return value

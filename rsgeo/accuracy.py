@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._checks import as_number, as_points, as_shape
+from ._checks import as_integer, as_number, as_points, as_shape
 from .errors import GCPError, GridError, ModelError
 from .transforms import (
     GEOREFERENCER_MODELS,
@@ -345,8 +345,13 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None, kind=None):
     Raises
     ------
     GCPError
-        As :func:`rsgeo.transforms.fit_transform`, or for a negative tolerance
-        or a ``min_gcps`` below the kind's minimum or above the number of GCPs.
+        As :func:`rsgeo.transforms.fit_transform`, or for a ``min_gcps`` below
+        the kind's minimum or above the number of GCPs.
+    rsgeo.errors.RsgeoError
+        For a negative, NaN or infinite tolerance, or a ``min_gcps`` that is
+        not a whole number.
+    TypeError
+        If ``tolerance`` or ``min_gcps`` is not a number (a string, a bool).
 
     Examples
     --------
@@ -361,16 +366,15 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None, kind=None):
     dst = as_points(dst, "dst")
     entry = _registered(order, kind, "refine_gcps")
     floor = entry.min_gcps
-    if min_gcps is None:
-        min_gcps = floor
+    tolerance = as_number(tolerance, "tolerance", low=0,
+                          why="the residual, in dst units, from which a GCP is dropped")
+    min_gcps = floor if min_gcps is None else as_integer(min_gcps, "min_gcps")
     if min_gcps < floor:
         raise GCPError(f"min_gcps must be at least {floor} for {_describe(entry)}, "
                        f"got {min_gcps}")
     if min_gcps > len(src):
         raise GCPError(f"min_gcps ({min_gcps}) exceeds the number of GCPs ({len(src)}); "
                        "it must be between the order's minimum and the number of GCPs")
-    if not np.isfinite(tolerance) or tolerance < 0:
-        raise GCPError(f"tolerance must be a non-negative number (dst units), got {tolerance!r}")
     kept = np.ones(len(src), dtype=bool)
     model = fit_transform(src, dst, entry.kind, entry.order)
     while kept.sum() > min_gcps:

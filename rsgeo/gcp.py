@@ -12,13 +12,14 @@ corner at (0, 0); QGIS's ``sourceY`` is minus the row.
 import csv
 import io
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
-from ._checks import as_points
+from ._i18n import _
 from .accuracy import _as_flags, residuals
 from .errors import CRSError, DataError, GCPError
-from .transforms import fit_transform, registered
+from .transforms import _as_real_points, fit_transform, registered
 
 __all__ = ["GCPSet", "read_points", "write_points"]
 
@@ -72,20 +73,21 @@ class GCPSet:  # numpydoc ignore=PR02
     candidates: "GCPSet" = None
 
     def __post_init__(self):
-        self.map_xy = as_points(self.map_xy, "map_xy")
-        self.image_xy = as_points(self.image_xy, "image_xy")
+        # copies: editing the caller's arrays afterwards must not move these GCPs
+        self.map_xy = np.array(_as_real_points(self.map_xy, "map_xy"))
+        self.image_xy = np.array(_as_real_points(self.image_xy, "image_xy"))
         n = len(self.map_xy)
         if len(self.image_xy) != n:
             raise GCPError(f"map_xy and image_xy must hold the same GCPs, got {n} and "
                            f"{len(self.image_xy)}")
         self.enabled = (np.ones(n, bool) if self.enabled is None
-                        else _as_flags(self.enabled, "enabled"))
+                        else np.array(_as_flags(self.enabled, "enabled")))
         if self.enabled.shape != (n,):
             raise GCPError(f"enabled must have one flag per GCP ({n}), got shape "
                            f"{self.enabled.shape}")
         self.ids = ([str(i + 1) for i in range(n)] if self.ids is None
                     else [str(i) for i in self.ids])
-        self.notes = [""] * n if self.notes is None else list(self.notes)
+        self.notes = [""] * n if self.notes is None else [str(note) for note in self.notes]
         if len(self.ids) != n or len(self.notes) != n:
             raise GCPError(f"ids and notes must have one entry per GCP ({n})")
 
@@ -249,13 +251,32 @@ def _crs_name(crs):
     return f"EPSG:{epsg}" if epsg else value.to_string()[:40]
 
 
+_TRUE = ("1", "true", "yes")
+_FALSE = ("0", "false", "no")
+
+
+def _as_enabled(value, path, number):
+    """QGIS's enable column: 0/1, true/false or yes/no in any case; anything else refused."""
+    text = str(value if value is not None else "1").strip().lower()
+    if text in _TRUE or text == "":
+        return True
+    if text in _FALSE:
+        return False
+    raise DataError(_("{path}, line {number}: enable must be 1 or 0 (or true/false, yes/no), got "
+                      "{value!r}").format(path=path, number=number, value=value))
+
+
 def read_points(path):
     """Read a QGIS Georeferencer ``.points`` file into a :class:`GCPSet`.
 
-    Format (QGIS Georeferencer): an optional first line ``#CRS: <WKT>``, a
-    header ``mapX,mapY,sourceX,sourceY,enable,dX,dY,residual`` (older files:
-    ``mapX,mapY,pixelX,pixelY,enable``), comma- or tab-separated. ``sourceY``
-    is the negative line number; rsgeo's rows count downwards, so row = -sourceY.
+    Format (QGIS Georeferencer, ``QgsGCPList::saveGcps``): an optional first
+    line ``#CRS: <WKT>``, a header ``mapX,mapY,sourceX,sourceY,enable,dX,dY,residual``
+    (older files: ``mapX,mapY,pixelX,pixelY,enable``), comma- or tab-separated,
+    UTF-8 with or without a byte-order mark. ``sourceY`` is the negative line
+    number; rsgeo's rows count downwards, so row = -sourceY. ``enable`` is 1 or
+    0 (true/false and yes/no in any case are read too). The extra columns
+    ``id`` and ``note`` that :func:`write_points` adds (QGIS reads only the
+    first five columns) give the GCPs' ids and notes.
 
     Parameters
     ----------
@@ -270,10 +291,19 @@ def read_points(path):
     Raises
     ------
     DataError
-        If the header lacks the needed columns or a value is not a number.
+        If the file is not text, the header lacks the needed columns, a value
+        is not a number, an ``enable`` value is not a flag, or the file holds
+        no GCP.
     """
-    with open(path, encoding="utf-8") as handle:
-        text = handle.read()
+    try:
+        with open(path, encoding="utf-8-sig") as handle:
+            text = handle.read()
+    except UnicodeDecodeError:
+        raise DataError(_("{path} is not a text .points file (it is not UTF-8 text); give the "
+                          "file QGIS's Georeferencer saved").format(path=path)) from None
+    if "\0" in text:
+        raise DataError(_("{path} is not a text .points file (it holds NUL bytes); give the "
+                          "file QGIS's Georeferencer saved").format(path=path))
     lines = text.splitlines()
     crs = None
     if lines and lines[0].startswith("#CRS:"):
@@ -291,7 +321,7 @@ def read_points(path):
     if missing:
         raise DataError(f"{path}: header {header} lacks {sorted(missing)}; "
                          "expected mapX,mapY,sourceX,sourceY,enable")
-    map_xy, image_xy, enabled = [], [], []
+    map_xy, image_xy, enabled, ids, notes = [], [], [], [], []
     for number, row in enumerate(reader, start=2):
         try:
             map_xy.append((float(row["mapX"]), float(row["mapY"])))
@@ -299,8 +329,24 @@ def read_points(path):
         except (TypeError, ValueError):
             raise DataError(f"{path}, line {number}: coordinates must be numbers, got "
                             f"{dict(row)}") from None
-        enabled.append(str(row.get("enable", "1")).strip() not in ("0", "false", "False"))
-    return GCPSet(np.array(map_xy), np.array(image_xy), enabled=enabled, crs=crs)
+        enabled.append(_as_enabled(row.get("enable"), path, number))
+        ids.append(row.get("id") or str(len(ids) + 1))
+        notes.append(row.get("note") or "")
+    if not map_xy:
+        raise DataError(_("{path} has a header but no points: a .points file needs one line per "
+                          "GCP after its header").format(path=path))
+    return GCPSet(np.array(map_xy), np.array(image_xy), enabled=enabled, ids=ids, crs=crs,
+                  notes=notes)
+
+
+def _check_not_package_data(path):
+    """Refuse to write inside rsgeo's shipped data folder."""
+    folder = (Path(__file__).parent / "data").resolve()
+    target = Path(path).resolve()
+    if target == folder or folder in target.parents:
+        raise DataError(_("{path} is inside rsgeo's own data folder ({folder}), whose files ship "
+                          "with the package; write your .points file somewhere else").format(
+                              path=path, folder=folder))
 
 
 def write_points(path, gcps, model=None):
@@ -308,7 +354,11 @@ def write_points(path, gcps, model=None):
 
     With a model (map -> image, as :meth:`GCPSet.fit` returns), the dX, dY and
     residual columns hold its residuals in pixels; QGIS's dY, like sourceY,
-    points up, so dY = -(model row - GCP row).
+    points up, so dY = -(model row - GCP row). The CRS goes on the ``#CRS:``
+    line as one line (QGIS reads only that line). Ids and notes follow in two
+    extra columns, ``id`` and ``note``: QGIS's reader
+    (``QgsGCPList::loadGcps``) takes only the first five columns and ignores
+    them, :func:`read_points` reads them back.
 
     Parameters
     ----------
@@ -328,6 +378,8 @@ def write_points(path, gcps, model=None):
         If ``gcps`` is not a :class:`GCPSet`.
     GCPError
         As :func:`rsgeo.accuracy.residuals`.
+    DataError
+        If ``path`` lies inside rsgeo's own data folder.
     """
     if not isinstance(gcps, GCPSet):
         raise TypeError(f"gcps must be a GCPSet (map_xy, image_xy, enabled), got "
@@ -336,13 +388,18 @@ def write_points(path, gcps, model=None):
         dx, dy, distance = residuals(model, gcps.map_xy, gcps.image_xy)
     else:
         dx = dy = distance = np.zeros(len(gcps))
+    _check_not_package_data(path)
     with open(path, "w", encoding="utf-8", newline="") as handle:
         if gcps.crs:
-            handle.write(f"#CRS: {gcps.crs}\n")
-        handle.write("mapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n")
+            # QGIS reads the CRS from the first line only: a multi-line WKT goes on one line
+            one_line = " ".join(part.strip() for part in str(gcps.crs).splitlines())
+            handle.write(f"#CRS: {one_line.strip()}\n")
+        handle.write("mapX,mapY,sourceX,sourceY,enable,dX,dY,residual,id,note\n")
+        writer = csv.writer(handle, lineterminator="\n")
         for i in range(len(gcps)):
             values = (gcps.map_xy[i, 0], gcps.map_xy[i, 1], gcps.image_xy[i, 0],
                       -gcps.image_xy[i, 1])
-            handle.write(",".join(repr(float(v)) for v in values)
-                         + f",{int(gcps.enabled[i])},{float(dx[i])!r},{float(-dy[i])!r},"
-                         f"{float(distance[i])!r}\n")
+            writer.writerow([repr(float(v)) for v in values]
+                            + [int(gcps.enabled[i]), repr(float(dx[i])), repr(float(-dy[i])),
+                               repr(float(distance[i])), gcps.ids[i],
+                               " ".join(gcps.notes[i].splitlines())])

@@ -21,11 +21,11 @@ import re
 import numpy as np
 
 from . import transforms as _transforms
-from ._checks import as_points, check_choice
+from ._checks import as_crs, as_output_shape, as_points, check_choice
+from ._i18n import _
 from .data import Raster
 from .errors import CRSError, DataError, GCPError
 from .gcp import GCPSet
-from .resample import suggested_grid, warp
 
 __all__ = ["as_crs", "transform_points", "datum_shift", "geocentric_translation",
            "CRSMapping", "reproject", "georeference"]
@@ -36,48 +36,135 @@ SAD69_TO_SIRGAS2000 = (-67.35, 3.88, -38.22)
 _METHODS = ("nearest", "bilinear", "cubic")
 
 
-def as_crs(crs, name="crs"):
-    """A rasterio CRS from a code, a string or a CRS, refusing one PROJ does not know.
+def _area_of_use(crs):
+    """PROJ's area of use of ``crs``: (west, south, east, north) in degrees, or None.
 
-    Parameters
-    ----------
-    crs : str, int or rasterio.crs.CRS
-        ``"EPSG:29193"``, ``29193``, a WKT or PROJ string, or a CRS.
-    name : str
-        The argument's name, for the error message.
-
-    Returns
-    -------
-    rasterio.crs.CRS
-
-    Raises
-    ------
-    ValueError
-        If ``crs`` is None or PROJ does not recognise it.
-
-    Examples
-    --------
-    >>> as_crs(31983).to_epsg()
-    31983
+    Read from the CRS's WKT2 ``USAGE[... BBOX[south, west, north, east]]``, which
+    PROJ fills from its database (EPSG's area of use); a CRS read from a file
+    carries no usage, so its EPSG code (if PROJ identifies one) is looked up.
     """
     from rasterio.crs import CRS
-    from rasterio.errors import CRSError
+    from rasterio.errors import CRSError as RasterioCRSError
 
-    if crs is None:
-        raise CRSError(f"{name} is None; a CRS is needed, e.g. 'EPSG:31983' "
-                       "(SIRGAS 2000 / UTM zone 23S)")
-    if isinstance(crs, CRS):
-        return crs
+    def boxes(value):
+        return re.findall(r"BBOX\[([-+.\deE]+),([-+.\deE]+),([-+.\deE]+),([-+.\deE]+)\]",
+                          value.to_wkt(version="WKT2_2019"))
+
     try:
-        value = (CRS.from_epsg(crs) if isinstance(crs, (int, np.integer))
-                 else CRS.from_user_input(crs))
-    except (CRSError, TypeError, ValueError) as error:
-        raise CRSError(f"{name} {crs!r} is not a CRS that PROJ knows ({error}); give an EPSG "
-                       "code such as 'EPSG:31983', a WKT or a PROJ string") from None
-    return value
+        found = boxes(crs)
+        if not found:
+            code = crs.to_epsg()
+            found = boxes(CRS.from_epsg(code)) if code else []
+    except RasterioCRSError:
+        return None
+    if not found:
+        return None
+    south, west, north, east = (float(v) for v in found[-1])
+    return west, south, east, north
 
 
-def transform_points(points, src_crs, dst_crs):
+def _outside_area(lon, lat, area):
+    """Mask of the points (degrees) outside an area of use; NaN and inf are outside."""
+    west, south, east, north = area
+    inside_lon = ((lon >= west) & (lon <= east) if west <= east
+                  else (lon >= west) | (lon <= east))          # an area across 180°
+    return ~(inside_lon & (lat >= south) & (lat <= north))
+
+
+def _check_area(points, src, dst):
+    """Refuse points outside the area of use of ``src`` or of ``dst`` (PROJ's, in degrees)."""
+    areas = [(crs, _area_of_use(crs)) for crs in (src, dst)]
+    areas = [(crs, area) for crs, area in areas if area is not None]
+    if not areas:
+        return
+    lon, lat = _lon_lat(points, src)
+    for crs, area in areas:
+        outside = _outside_area(lon, lat, area)
+        if outside.any():
+            first = int(np.flatnonzero(outside)[0])
+            raise CRSError(_(
+                "{count} of {n} points are outside the area of use of {crs} (longitude "
+                "{west:g} to {east:g}, latitude {south:g} to {north:g}; first: point {first} "
+                "({x:.6g}, {y:.6g}) in {src}, at longitude {lon:.4f}, latitude {lat:.4f}): "
+                "PROJ's answer there is not a position; give points in src_crs's own "
+                "coordinates and units (longitude and latitude typed into a projected CRS?), "
+                "or CRSs whose area covers them").format(
+                    count=int(outside.sum()), n=len(points), crs=_crs_name(crs),
+                    west=area[0], east=area[2], south=area[1], north=area[3], first=first,
+                    x=points[first, 0], y=points[first, 1], src=_crs_name(src),
+                    lon=lon[first], lat=lat[first]))
+
+
+def _lon_lat(points, crs):
+    """Longitude, latitude (EPSG:4326) of points in ``crs``; NaN where PROJ cannot say."""
+    from rasterio.warp import transform
+
+    try:
+        with np.errstate(all="ignore"):
+            return tuple(np.asarray(v, dtype=np.float64)
+                         for v in transform(crs, "EPSG:4326", points[:, 0], points[:, 1]))
+    except Exception:                  # GDAL refuses the batch: point by point, failures NaN
+        lon, lat = np.full(len(points), np.nan), np.full(len(points), np.nan)
+        for k, (x, y) in enumerate(points):
+            try:
+                with np.errstate(all="ignore"):
+                    (lon[k],), (lat[k],) = transform(crs, "EPSG:4326", [x], [y])
+            except Exception:
+                pass
+        return lon, lat
+
+
+# PROJ parameters of the datum, not of the projection (a datum shift changes only these)
+_DATUM_KEYS = {"ellps", "datum", "towgs84", "nadgrids", "a", "b", "rf", "f", "R", "pm",
+               "no_defs", "wktext", "type", "units", "to_meter"}
+
+
+def _projection(crs):
+    """The projection of ``crs`` without its datum: PROJ's parameters (proj, zone, lon_0 ...)."""
+    return {key: value for key, value in crs.to_dict().items() if key not in _DATUM_KEYS}
+
+
+def _crs_name(crs):
+    """'EPSG:31983' when PROJ identifies a code, else the CRS's name."""
+    code = crs.to_epsg()
+    if code:
+        return f"EPSG:{code}"
+    match = re.match(r'\w+\["([^"]*)"', crs.to_wkt())
+    return match.group(1) if match else crs.to_string()[:60]
+
+
+def _kind_and_unit(crs):
+    """("geographic" or "projected" or another kind, unit name, metres or radians per unit)."""
+    kind = ("geographic" if crs.is_geographic else "projected" if crs.is_projected
+            else "other")
+    try:
+        unit, factor = crs.units_factor
+    except Exception:                 # rasterio's CRSError for a CRS without one unit
+        unit, factor = "unknown", float("nan")
+    return kind, unit, factor
+
+
+def _transform(points, src, dst):
+    """PROJ's transformation of finite (n, 2) points between two checked CRSs, unchecked area."""
+    from rasterio.warp import transform
+
+    if src == dst:
+        return points.copy()
+    try:
+        xs, ys = transform(src, dst, points[:, 0], points[:, 1])
+    except Exception as error:        # GDAL's CPLE_AppDefinedError "Reprojection failed"
+        raise CRSError(_("PROJ could not transform the points from {src} to {dst} ({error}); "
+                         "give points inside both CRSs' areas of use").format(
+                             src=_crs_name(src), dst=_crs_name(dst), error=error)) from None
+    result = np.column_stack([xs, ys]).astype(np.float64)
+    if not np.isfinite(result).all():
+        raise CRSError(_("PROJ could not transform some points from {src} to {dst} "
+                         "(outside the CRS's area of use?)").format(
+                             src=_crs_name(src), dst=_crs_name(dst)))
+    return result
+
+
+def transform_points(points, src_crs, dst_crs, check_area=True):
     """Map coordinates (x, y) moved from one CRS to another by PROJ.
 
     PROJ picks the transformation (datum shift) it would pick for ``gdalwarp``
@@ -90,6 +177,12 @@ def transform_points(points, src_crs, dst_crs):
         Easting, northing (or longitude, latitude) in ``src_crs``.
     src_crs, dst_crs : str, int or rasterio.crs.CRS
         See :func:`as_crs`.
+    check_area : bool
+        Refuse points outside the area of use (PROJ's, from the EPSG
+        database) of ``src_crs`` or ``dst_crs``: there PROJ still returns
+        numbers, but they are not the points' positions (longitude and
+        latitude typed into a UTM CRS move 42.8 m from SAD69 to SIRGAS 2000).
+        False transforms them as ``gdalwarp`` does, without a word.
 
     Returns
     -------
@@ -99,29 +192,28 @@ def transform_points(points, src_crs, dst_crs):
     Raises
     ------
     ValueError
-        For a CRS that PROJ does not know, or points that are not (n, 2) finite.
+        For a CRS that PROJ does not know, points that are not (n, 2) finite,
+        or (``check_area``) points outside a CRS's area of use.
 
     Examples
     --------
     >>> transform_points([[0.0, 0.0]], "EPSG:4326", "EPSG:4326")
     array([[0., 0.]])
     """
-    from rasterio.warp import transform
-
     points = as_points(points, "points")
     src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
-    if src == dst:
-        return points.copy()
-    xs, ys = transform(src, dst, points[:, 0], points[:, 1])
-    result = np.column_stack([xs, ys]).astype(np.float64)
-    if not np.isfinite(result).all():
-        raise CRSError(f"PROJ could not transform some points from {src} to {dst} "
-                       "(outside the CRS's area of use?)")
-    return result
+    if check_area:
+        _check_area(points, src, dst)
+    return _transform(points, src, dst)
 
 
 def datum_shift(points, src_crs, dst_crs):
     """How far each point's coordinates move from ``src_crs`` to ``dst_crs``.
+
+    A shift is a difference of coordinates, so the two CRSs must be alike:
+    the same projection in the same unit on two datums (SAD69 / UTM 21S and
+    SIRGAS 2000 / UTM 21S), or both geographic; and the points must be inside both CRSs' areas of
+    use (:func:`transform_points`).
 
     Parameters
     ----------
@@ -129,7 +221,7 @@ def datum_shift(points, src_crs, dst_crs):
         Map (x, y) in ``src_crs``.
     src_crs, dst_crs : str, int or rasterio.crs.CRS
         Two projected CRSs with the same units (e.g. SAD69 / UTM 21S and
-        SIRGAS 2000 / UTM 21S).
+        SIRGAS 2000 / UTM 21S), or two geographic CRSs.
 
     Returns
     -------
@@ -139,7 +231,10 @@ def datum_shift(points, src_crs, dst_crs):
     Raises
     ------
     ValueError
-        As :func:`transform_points`.
+        As :func:`transform_points`; if one CRS is geographic and the other
+        projected, their units differ (EPSG:4326 -> 31983 is a projection,
+        not a shift), or their projections differ (UTM zones 22S and 23S,
+        UTM and Web Mercator).
 
     Examples
     --------
@@ -148,9 +243,37 @@ def datum_shift(points, src_crs, dst_crs):
     True
     """
     points = as_points(points, "points")
-    moved = transform_points(points, src_crs, dst_crs)
+    src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
+    (src_kind, src_unit, src_factor), (dst_kind, dst_unit, dst_factor) = (
+        _kind_and_unit(src), _kind_and_unit(dst))
+    if src_kind != dst_kind or src_kind == "other" or not np.isclose(src_factor, dst_factor,
+                                                                     rtol=1e-12, atol=0):
+        raise CRSError(_(
+            "a datum shift needs two CRSs of the same kind and unit, got src_crs {src} "
+            "({src_kind}, {src_unit}) and dst_crs {dst} ({dst_kind}, {dst_unit}): the "
+            "difference of their coordinates is not a distance; give two projected CRSs in "
+            "the same unit (e.g. EPSG:29193 and EPSG:31983) or two geographic CRSs, or use "
+            "transform_points to convert between kinds").format(
+                src=_crs_name(src), src_kind=src_kind, src_unit=src_unit, dst=_crs_name(dst),
+                dst_kind=dst_kind, dst_unit=dst_unit))
+    if _projection(src) != _projection(dst):
+        raise CRSError(_(
+            "a datum shift compares one projection on two datums, but src_crs {src} and dst_crs "
+            "{dst} are different projections ({src_projection} and {dst_projection}): the "
+            "difference of their coordinates is mostly the projection's; give the same "
+            "projection (e.g. UTM zone 23S: EPSG:29193 and EPSG:31983), or use transform_points "
+            "to change projection").format(
+                src=_crs_name(src), dst=_crs_name(dst), src_projection=_proj_text(src),
+                dst_projection=_proj_text(dst)))
+    moved = transform_points(points, src, dst)
     dx, dy = (moved - points).T
     return dx, dy, np.hypot(dx, dy)
+
+
+def _proj_text(crs):
+    """A CRS's projection as PROJ parameters, e.g. "+proj=utm +zone=23 +south"."""
+    return " ".join(f"+{key}" if value is True else f"+{key}={value}"
+                    for key, value in _projection(crs).items())
 
 
 def _geographic(crs):
@@ -252,10 +375,12 @@ class CRSMapping:
     """
 
     def __init__(self, to_source, src_crs, dst_crs):
-        self.to_source, self.src_crs, self.dst_crs = to_source, src_crs, dst_crs
+        self.to_source = to_source
+        self.src_crs, self.dst_crs = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
 
     def __call__(self, points):
-        moved = transform_points(points, self.dst_crs, self.src_crs)
+        # every output cell, as gdalwarp does: cells beyond the CRS's area of use get nodata
+        moved = _transform(as_points(points, "points"), self.dst_crs, self.src_crs)
         if callable(self.to_source):
             return self.to_source(moved)
         cols, rows = self.to_source @ (moved[:, 0], moved[:, 1])
@@ -263,10 +388,19 @@ class CRSMapping:
 
 
 def _as_raster(raster_or_path):
+    import os
+
     import rasterio
 
     if isinstance(raster_or_path, Raster):
         return raster_or_path
+    if not isinstance(raster_or_path, (str, os.PathLike)):
+        shape = getattr(raster_or_path, "shape", None)
+        raise TypeError(_(
+            "raster_or_path must be an rsgeo.data.Raster or the path of a GeoTIFF, got "
+            "{kind}{shape}; wrap an array as rsgeo.data.Raster(array, transform, crs, nodata, "
+            "description)").format(kind=type(raster_or_path).__name__,
+                                   shape="" if shape is None else f" of shape {shape}"))
     try:
         with rasterio.open(raster_or_path) as dataset:
             array = dataset.read()
@@ -316,6 +450,8 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
     >>> reproject(raster, "EPSG:31983").crs.to_epsg()
     31983
     """
+    from .resample import suggested_grid, warp  # Numba, loaded only by the verbs that warp
+
     check_choice(method, "method", _METHODS)
     if raster.crs is None:
         raise CRSError(f"raster {raster.name!r} has no CRS; reprojecting needs to know "
@@ -325,18 +461,24 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
 
     def pixel_to_dst(points):
         xs, ys = raster.transform @ (points[:, 0], points[:, 1])
-        return transform_points(np.column_stack([xs, ys]), src_crs, dst)
+        return _transform(np.column_stack([xs, ys]), src_crs, dst)
 
     transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_dst, resolution=size)
+    as_output_shape(shape, raster.array.dtype, _bands(raster.array), "shape")
     mapping = CRSMapping(~raster.transform, src_crs, dst)
     array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
     return Raster(array, transform, dst, nodata, f"{raster.description} reprojected to {dst}",
                   raster.name)
 
 
+def _bands(array):
+    """Bands of an image: its first axis when 3-D, else 1."""
+    return array.shape[0] if array.ndim == 3 else 1
+
+
 def _then_transform(pixel_to_map, src_crs, dst_crs):
     """Source pixel -> map in ``src_crs`` -> map in ``dst_crs``."""
-    return lambda points: transform_points(pixel_to_map(points), src_crs, dst_crs)
+    return lambda points: _transform(as_points(pixel_to_map(points), "points"), src_crs, dst_crs)
 
 
 def _fit(gcps, kind, order):
@@ -397,6 +539,8 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     >>> corrected.transform.a, corrected.crs.to_epsg()
     (20.0, 29191)
     """
+    from .resample import suggested_grid, warp  # Numba, loaded only by the verbs that warp
+
     check_choice(method, "method", _METHODS)
     if not isinstance(gcps, GCPSet):
         raise TypeError(f"gcps must be an rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
@@ -417,6 +561,7 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
         src_crs = dst
     # gdalwarp's suggested output grid (GDALSuggestedWarpOutput2; -tr when a resolution is given)
     transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_map, resolution=resolution)
+    as_output_shape(shape, raster.array.dtype, _bands(raster.array), "shape")
     array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
     return Raster(array, transform, src_crs, nodata,
                   f"{raster.name or 'image'} georeferenced: {kind}"

@@ -50,7 +50,8 @@ import numpy as np
 from numba import njit
 
 from . import gcp, tiepoints
-from ._checks import as_number, as_points, check_choice
+from ._checks import as_integer, as_number, as_points, check_choice
+from ._i18n import _
 from .errors import GCPError, RsgeoError
 
 __all__ = [
@@ -121,6 +122,16 @@ class Mesh:  # numpydoc ignore=PR02
         return len(self.areas)
 
 
+def _check_meshes(**meshes):
+    """Refuse anything but a :class:`Mesh` for each named argument (TypeError naming it)."""
+    for name, mesh in meshes.items():
+        if not isinstance(mesh, Mesh):
+            raise TypeError(_("{name} must be a rsgeo.matching.Mesh, got {kind}; make one with "
+                              "Mesh(centroids, areas), e.g. from rsgeo.regions' segments: "
+                              "Mesh(segments.centroids, segments.areas)").format(
+                                  name=name, kind=type(mesh).__name__))
+
+
 def _as_solutions(solutions, n, m):
     solutions = np.asarray(solutions)
     if solutions.ndim == 1:
@@ -165,6 +176,7 @@ def fitness_batch(solutions, reference, adjustment, alpha=0.5, variant="paper"):
     >>> fitness_batch([[1, 2, 3], [2, 1, 3]], ref, ref).round(4).tolist()
     [1.0, 0.7587]
     """
+    _check_meshes(reference=reference, adjustment=adjustment)
     alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
     check_choice(variant, "variant", VARIANTS)
     m, n = len(reference), len(adjustment)
@@ -302,9 +314,10 @@ def group_spread(solution, adjustment, m=None):
     [0.86, 1.0]
     """
     solution = np.asarray(solution)
+    _check_meshes(adjustment=adjustment)
     m = int(solution.max()) if m is None else int(m)
     solutions = _as_solutions(solution, len(adjustment), max(m, 1))
-    group_area, _, spread, _ = _groups(solutions, m, adjustment)
+    group_area, _centroid, spread, _members = _groups(solutions, m, adjustment)
     return np.where(group_area > 0, spread, np.nan)[0]
 
 
@@ -573,7 +586,12 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     ------
     ValueError
         For an unknown selection, encoding, crossover or variant, a rate
-        outside [0, 1], or a population, tournament or stall count below 1.
+        outside [0, 1], or a population, tournament or stall count below 1,
+        or the binary coding with more than 255 reference segments (use
+        ``encoding="integer"``).
+    TypeError
+        If ``reference`` or ``adjustment`` is not a :class:`Mesh`, or a count or
+        the seed is not a number (a bool, a string); 2.5 or NaN is a ValueError.
 
     References
     ----------
@@ -591,14 +609,28 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     >>> bool((result.solution == truth).all())
     True
     """
+    _check_meshes(reference=reference, adjustment=adjustment)
     alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
     check_choice(variant, "variant", VARIANTS)
     check_choice(selection, "selection", ("tournament", "roulette"))
     check_choice(encoding, "encoding", ("binary", "integer"))
+    if encoding == "binary" and len(reference) > 2**BITS_PER_GENE - 1:
+        raise RsgeoError(_("the binary coding holds labels 0 to {top} in {bits} bits per gene, "
+                           "and the reference has {m} segments; use the integer coding "
+                           "(encoding=\"integer\")").format(
+                               top=2**BITS_PER_GENE - 1, bits=BITS_PER_GENE, m=len(reference)))
     if crossover is None:
         crossover = "one-point" if encoding == "binary" else "uniform"
     check_choice(crossover, "crossover", ("one-point", "uniform"))
     as_number(elite_fraction, "elite_fraction", 0, 1)
+    population_size = as_integer(population_size, "population_size", 2)
+    generations = as_integer(generations, "generations", 1)
+    tournament_size = as_integer(tournament_size, "tournament_size", 1)
+    if stall_generations is not None:
+        stall_generations = as_integer(stall_generations, "stall_generations", 1, None,
+                                       _("or None to run every generation"))
+    if seed is not None:
+        seed = as_integer(seed, "seed", 0)
     if int(population_size) < 2 or int(generations) < 1:
         raise RsgeoError(f"population_size must be at least 2 and generations at least 1, "
                          f"got {population_size} and {generations}")
@@ -621,7 +653,7 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     def labels_of(population):
         # 8 bits per gene, most significant first: packbits is decode without its checks
         genes = np.packbits(population, axis=-1) if encoding == "binary" else population
-        return (genes % (m + 1)).astype(np.intp)
+        return genes.astype(np.intp) % (m + 1)
 
     if encoding == "binary":
         population = rng.integers(0, 2, (population_size, genes_per_individual), dtype=np.uint8)
@@ -720,6 +752,7 @@ def exhaustive_match(reference, adjustment, alpha=0.5, one_to_one=None, batch=20
     [3, 1, 2]
     """
     check_choice(variant, "variant", VARIANTS)
+    _check_meshes(reference=reference, adjustment=adjustment)
     m, n = len(reference), len(adjustment)
     if one_to_one is None:
         one_to_one = (m + 1) ** n > 5_000_000
@@ -799,6 +832,7 @@ def optimum_match(reference, adjustment, alpha=0.5, variant="paper", incumbent=N
     >>> best.solution.tolist(), best.optimal
     ([3, 1, 2], True)
     """
+    _check_meshes(reference=reference, adjustment=adjustment)
     alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
     check_choice(variant, "variant", VARIANTS)
     m, n = len(reference), len(adjustment)
@@ -945,6 +979,7 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
     """
     from scipy.optimize import quadratic_assignment
 
+    _check_meshes(reference=reference, adjustment=adjustment)
     m, n = len(reference), len(adjustment)
     if m != n:
         raise RsgeoError(f"qap_match pairs segments one to one: it needs as many reference "
@@ -1001,6 +1036,7 @@ def matched_centroids(solution, reference, adjustment):
     >>> adjustment_xy[2].tolist(), labels.tolist()
     ([0.0, 100.0], [1, 2, 3])
     """
+    _check_meshes(reference=reference, adjustment=adjustment)
     solution = _as_solutions(solution, len(adjustment), len(reference))[0]
     labels = np.unique(solution[solution > 0])
     adjustment_xy = np.array([np.average(adjustment.centroids[solution == j], axis=0,
@@ -1103,7 +1139,8 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
     reference_mesh = Mesh(reference.centroids, reference.areas, pixel_size=reference_pixel)
     adjustment_mesh = Mesh(adjustment.centroids, adjustment.areas, pixel_size=adjustment_pixel)
     match = genetic_match(reference_mesh, adjustment_mesh, alpha, seed=seed, variant=variant)
-    adjustment_xy, _, labels = matched_centroids(match.solution, reference_mesh, adjustment_mesh)
+    adjustment_xy, _reference_xy, labels = matched_centroids(match.solution, reference_mesh,
+                                                             adjustment_mesh)
     image_xy = adjustment_xy / adjustment_pixel
     map_xy = reference.map_centroids(reference_transform)[labels - 1]
     if len(labels) < 3:

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import check_choice
+from ._checks import as_integer, as_number, check_choice
+from ._i18n import _
 from .errors import CRSError, GridError, ImageError, RsgeoError
 from .resample import interpolate
 
@@ -87,6 +88,11 @@ class GainOffsetFit:
 def _pair(x_image, y_image):
     x = np.asarray(x_image)
     y = np.asarray(y_image)
+    for name, values in (("x_image", x), ("y_image", y)):
+        if values.dtype.kind not in "buif":
+            raise TypeError(_("{name} must hold real numbers (integers or floats), got dtype "
+                              "{dtype}; for a complex image regress its real part, imaginary "
+                              "part or modulus (np.abs)").format(name=name, dtype=values.dtype))
     if x.shape != y.shape:
         raise ImageError(f"x_image and y_image must cover the same pixels (same shape), "
                          f"got {x.shape} and {y.shape}; cut both to their overlap first")
@@ -126,7 +132,8 @@ def mean_filter(image, size=3):
     """
     from scipy.ndimage import uniform_filter
 
-    if int(size) != size or size < 1 or size % 2 == 0:
+    size = as_integer(size, "size", 1, None, _("an odd window size: 3, 5, 7 ..."))
+    if size % 2 == 0:
         raise RsgeoError(f"filter size must be an odd positive integer (3, 5, 7 ...), got "
                          f"{size!r}")
     return uniform_filter(np.asarray(image, dtype=np.float64), size=int(size), mode="nearest")
@@ -142,7 +149,9 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
         reference) images over the same ground, same shape.
     smooth : int, optional
         Size of the mean filter applied to both before fitting (the paper used
-        a low-pass mean filter); None fits the raw pixels.
+        a low-pass mean filter); None fits the raw pixels. Only for one band
+        (2-D images): a band stack is refused, since a 2-D filter would not
+        run along a band and a 3-D one would mix bands.
     method : {"ols", "rma", "orthogonal", "theil_sen"}
         "ols" is ordinary least squares as in the paper; it assumes X has no
         noise, and noise in X biases its gain towards zero. "rma" (reduced
@@ -158,8 +167,12 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
     ------
     ValueError
         If the shapes differ, there are fewer than 3 pixels, either image holds
-        NaN or infinite values (mask them first: the message says how), or
-        either image is constant (no regression possible).
+        NaN or infinite values (mask them first: the message says how),
+        either image is constant or the two do not vary together (no
+        regression possible), their spread overflows float64, or ``smooth``
+        is given with a band stack (3-D: fit each band separately).
+    TypeError
+        If either image holds complex (or non-numeric) values.
 
     Examples
     --------
@@ -175,12 +188,30 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
     check_choice(method, "method", FIT_METHODS)
     x, y = _pair(x_image, y_image)
     if smooth is not None:
+        if x.ndim != 2:
+            raise ImageError(_("smooth filters one band (a 2-D image), got shape {shape}; fit "
+                               "each band separately (fit_gain_offset(x_image[b], y_image[b], "
+                               "smooth=...)), or pass smooth=None").format(shape=x.shape))
+        smooth = as_integer(smooth, "smooth", 1, None, _("an odd window size: 3, 5, 7 ..."))
         x, y = mean_filter(x, smooth), mean_filter(y, smooth)
     x, y = x.ravel(), y.ravel()
-    sx, sy = x.std(), y.std()
-    if sx == 0 or sy == 0:
-        which = "x_image" if sx == 0 else "y_image"
-        raise ImageError(f"{which} is constant over the overlap: no regression is possible")
+    # centred in float64 (the images are float64 from _pair): no integer wrap, no overflow
+    with np.errstate(over="ignore"):
+        sx, sy = x.std(), y.std()
+    for name, spread in (("x_image", sx), ("y_image", sy)):
+        if not np.isfinite(spread):
+            raise ImageError(_("{name}'s values are too large to regress in float64 (their "
+                               "spread overflows); scale both images down first").format(
+                                   name=name))
+        if spread == 0:
+            raise ImageError(_("{name} is constant over the overlap: a constant image cannot "
+                               "be regressed (no gain fits it); use an overlap where both "
+                               "images vary").format(name=name))
+    covariance = float(np.mean((x - x.mean()) * (y - y.mean())))
+    if method != "theil_sen" and (covariance == 0 or not np.isfinite(covariance)):
+        raise ImageError(_("x_image and y_image do not vary together (covariance {cov}): no "
+                           "gain can be fitted; check that they cover the same ground").format(
+                               cov=covariance))
     r = float(np.corrcoef(x, y)[0, 1])
     if method == "ols":
         gain = r * sy / sx
@@ -226,9 +257,14 @@ def apply_gain_offset(image, gain, offset, rounding="truncate"):
 
     Raises
     ------
+    TypeError
+        If ``gain`` or ``offset`` is not a real number (a string, a bool, an array).
     ValueError
         If the image is not of an integer dtype, gain/offset are not finite,
-        or ``rounding`` is unknown.
+        or ``rounding`` is unknown; if a 64-bit image holds values beyond
+        +-2**53 (float64, in which the stretch is computed, cannot hold
+        them exactly). Results beyond the dtype's range are clipped to it,
+        exactly for 64-bit types too (2**62 * 4 in int64 is 2**63 - 1).
 
     Examples
     --------
@@ -244,12 +280,26 @@ def apply_gain_offset(image, gain, offset, rounding="truncate"):
     if image.dtype.kind not in "ui":
         raise ImageError(f"apply_gain_offset truncates to integers: the image must have an "
                          f"integer dtype, got {image.dtype}")
-    if not (np.isfinite(gain) and np.isfinite(offset)):
-        raise RsgeoError(f"gain and offset must be finite numbers, got {gain!r} and {offset!r}")
+    gain = as_number(gain, "gain")
+    offset = as_number(offset, "offset")
     info = np.iinfo(image.dtype)
+    if image.dtype.itemsize == 8 and image.size and (int(image.max()) > 2 ** 53
+                                                     or int(image.min()) < -(2 ** 53)):
+        raise ImageError(_(
+            "image ({dtype}) holds values from {low} to {high}, beyond +-2**53: gain * image "
+            "+ offset is computed in float64, whose integers stop being exact at 2**53, so "
+            "their last bits would be lost; subtract an offset first so that the values "
+            "fit").format(dtype=image.dtype, low=int(image.min()), high=int(image.max())))
     exact = gain * image.astype(np.float64) + offset
     stretched = np.trunc(exact) if rounding == "truncate" else np.floor(exact + 0.5)
-    return np.clip(stretched, info.min, info.max).astype(image.dtype)
+    # clip in float64, then set the values above the top exactly: a 64-bit maximum has no
+    # float64 (2**63 - 1 rounds up to 2**63, whose cast wraps around to -2**63)
+    top = float(info.max)
+    above = stretched >= top if int(top) > info.max else stretched > top
+    result = np.clip(stretched, info.min, np.nextafter(top, 0) if int(top) > info.max
+                     else top).astype(image.dtype)
+    result[above] = info.max
+    return result
 
 
 def minmax_stretch(x_image, y_image):

@@ -74,16 +74,20 @@ import numpy as np  # noqa: E402
 from numba import njit, prange  # noqa: E402
 
 from ._checks import (
+    as_affine,
     as_bands_first,
     as_image,
+    as_integer,
     as_nodata,
     as_num_threads,
+    as_output_shape,
     as_resolution,
     as_scale,
     as_shape,
     check_choice,
 )
-from .errors import GridError, ModelError, RsgeoError
+from ._i18n import _
+from .errors import GridError, ImageError, ModelError, RsgeoError
 
 __all__ = [
     "METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
@@ -244,7 +248,8 @@ def bilinear_weights(t):
     return np.stack([1.0 - t, t])
 
 
-def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, scale=1.0):
+def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, scale=1.0,
+                src_nodata=None):
     """Values of an image at continuous (col, row) positions, by GDAL's rules.
 
     Parameters
@@ -272,6 +277,20 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, sc
         as GDAL's ``GWKResample`` does (bit for bit with GDAL given the same
         XSCALE/YSCALE and a destination nodata); 1 by default (the plain
         2 x 2 and 4 x 4 kernels). Nearest ignores it.
+    src_nodata : int or float or None
+        The source's nodata value (gdalwarp's ``-srcnodata``; NaN for NaN
+        pixels of a float image): source pixels equal to it are invalid.
+        As GDAL does it: nearest gives ``nodata`` where its pixel is invalid;
+        bilinear renormalises its weights over the valid pixels of the 2 x 2
+        window (``nodata`` if none has weight); cubic falls back to that
+        bilinear wherever its 4 x 4 window holds an invalid pixel; an
+        output pixel whose containing source pixel is invalid in every band
+        is ``nodata`` (GDAL's unified mask, its default UNIFIED_SRC_NODATA).
+        Bit for bit with GDAL 3.10.3's VRT warp with the exact transformer
+        (tested for nearest, bilinear, cubic and average, uint8 and float32,
+        one and two bands, with and without a destination nodata). None (the default): every pixel
+        is valid, and a NaN spreads to the neighbours that weigh it, as in
+        GDAL. Not with kernels widened by ``scale`` below 0.95.
 
     Returns
     -------
@@ -285,7 +304,12 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, sc
         the method is unknown, cols and rows differ in shape or hold NaN or
         infinity, nodata does not fit the dtype, or num_threads is not a whole
         number from 1 to the number of threads Numba may use, or scale is not
-        one or two numbers above 0.
+        one or two numbers above 0; if a 64-bit integer image holds values
+        beyond +-2**53 for bilinear or cubic (float64, in which they are
+        computed as in GDAL, cannot hold them exactly); if src_nodata does
+        not fit the dtype, or is given with a scale below 0.95.
+    TypeError
+        If cols or rows are not real numbers (complex, strings, booleans).
 
     References
     ----------
@@ -310,19 +334,93 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, sc
     cols, rows = _check_positions(cols, rows)
     nodata = as_nodata(nodata, image.dtype)
     scale = as_scale(scale)
+    _check_exact_in_float64(image, method)
+    valid = _validity(image, src_nodata)
 
     shape = (image.shape[0],) + cols.shape if image.ndim == 3 else cols.shape
     # rows of positions for the threads: the last axis, or blocks of a long 1-D list
     row_length = cols.shape[-1] if cols.ndim >= 2 else min(cols.size, _BLOCK)
-    out, _ = _resample(image, method, nodata, num_threads, cols.ravel(), rows.ravel(),
-                       _NO_AFFINE, cols.size, row_length, scale)
+    out, _landed = _resample(image, method, nodata, num_threads, cols.ravel(), rows.ravel(),
+                             _NO_AFFINE, cols.size, row_length, scale, valid)
     return out.reshape(shape)
 
 
+# Integers above this in magnitude have no exact float64 (2**53 + 1 rounds to 2**53).
+_EXACT_IN_FLOAT64 = 2 ** 53
+
+
+def _check_exact_in_float64(image, method):
+    """Refuse a 64-bit integer image beyond +-2**53 for a method that computes in float64.
+
+    GDAL's kernels, and rsgeo's, weigh pixels in float64, whose 53-bit
+    significand holds every integer only up to 2**53: 2**53 + 1 would come
+    out as 2**53 without a word. Nearest copies values and needs no check.
+    """
+    if method == "nearest" or image.dtype.kind not in "ui" or image.dtype.itemsize < 8:
+        return
+    low, high = int(image.min()), int(image.max())
+    if high > _EXACT_IN_FLOAT64 or low < -_EXACT_IN_FLOAT64:
+        raise ImageError(_(
+            "image ({dtype}) holds values from {low} to {high}, beyond +-2**53, which "
+            "{method} cannot weigh exactly: it computes in float64 (as GDAL does), whose "
+            "integers stop being exact at 2**53 = {limit}; use method='nearest' (which copies "
+            "values), or subtract an offset so that the values fit").format(
+                dtype=image.dtype, low=low, high=high, method=method, limit=_EXACT_IN_FLOAT64))
+
+
+def _validity(image, src_nodata):
+    """The source validity mask of ``src_nodata``: uint8 (bands, rows, cols), or None.
+
+    GDAL's ``-srcnodata``: a pixel equal to it (NaN: a NaN pixel) is invalid,
+    compared in the image's own type as GDAL's nodata masker does.
+    """
+    if src_nodata is None:
+        return None
+    src_nodata = as_nodata(src_nodata, image.dtype)
+    bands = image if image.ndim == 3 else image[np.newaxis]
+    work = _COMPUTED_AS.get(bands.dtype, bands.dtype.newbyteorder("="))
+    if work.kind == "f" and np.isnan(src_nodata):
+        valid = ~np.isnan(bands)
+    else:
+        valid = bands != np.array(src_nodata).astype(work)
+    return np.ascontiguousarray(valid, dtype=np.uint8)
+
+
+def _native(image):
+    """``image`` in a type Numba computes in (native byte order; float16 as float32), once."""
+    work = _COMPUTED_AS.get(image.dtype, image.dtype.newbyteorder("="))
+    return np.ascontiguousarray(image, dtype=work)
+
+
+def _check_mapping(mapping):
+    """Refuse a mapping that is neither an affine.Affine nor callable, with the fix."""
+    if isinstance(mapping, affine.Affine):
+        as_affine(mapping, "mapping")
+        return
+    if isinstance(mapping, tuple) and len(mapping) in (6, 9):
+        raise TypeError(_(
+            "mapping must be an affine.Affine or a callable model, got a {n}-tuple {value!r}; "
+            "for a GDAL geotransform (c, a, b, f, d, e) of map -> source pixel use "
+            "affine.Affine.from_gdal(*t), and for a raster's own geotransform (pixel -> map) "
+            "its inverse, ~affine.Affine.from_gdal(*t)").format(n=len(mapping), value=mapping))
+    if not callable(mapping):
+        raise TypeError(_(
+            "mapping must be a callable model, map (x, y) -> source (col, row), such as one "
+            "transforms.fit_transform(map_xy, image_xy, ...) returns, or an affine.Affine "
+            "such as ~raster.transform; got {kind}").format(kind=type(mapping).__name__))
+
+
 def _check_positions(cols, rows):
-    """cols and rows as float64 arrays of one shape, finite; else ValueError."""
-    cols = np.asarray(cols, dtype=np.float64)
-    rows = np.asarray(rows, dtype=np.float64)
+    """cols and rows as float64 arrays of one shape, finite; else ValueError (TypeError if
+    they are not real numbers)."""
+    arrays = []
+    for name, values in (("cols", cols), ("rows", rows)):
+        array = np.asarray(values)
+        if array.dtype.kind not in "uif":
+            raise TypeError(_("{name} must be real numbers (pixel positions), got dtype "
+                              "{dtype}").format(name=name, dtype=array.dtype))
+        arrays.append(array.astype(np.float64, copy=False))
+    cols, rows = arrays
     if cols.shape != rows.shape:
         raise RsgeoError(f"cols and rows must have the same shape, got {cols.shape} and "
                          f"{rows.shape}")
@@ -338,6 +436,8 @@ _BLOCK = 4096
 # "No affine mapping": the positions come as arrays (see _source_position).
 _NO_AFFINE = np.empty(0)
 _NO_POSITIONS = np.empty(0)
+# "No source validity mask": every source pixel is valid.
+_NO_MASK = np.empty((0, 0, 0), dtype=np.uint8)
 # The types GDAL 3.10 warps with its no-mask kernels when there is no destination nodata
 # (GWK*NoMasksOrDstDensityOnly*); every other type goes through GWKRealCase.
 _NO_MASK_TYPES = ("uint8", "int16", "uint16", "float32")
@@ -347,13 +447,14 @@ _COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
 
 
 def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, row_length,
-              scale=(1.0, 1.0)):
+              scale=(1.0, 1.0), valid=None):
     """Run one method's kernel over ``size`` output pixels; return (out, pixels inside).
 
     ``out`` is (bands, size) in ``image``'s dtype. Positions come from the
     arrays ``cols``, ``rows`` or, when ``to_source`` holds two GDAL geotransforms
     (the output grid's pixel -> map, then map -> source pixel), are computed
-    pixel by pixel from an output grid ``row_length`` pixels wide.
+    pixel by pixel from an output grid ``row_length`` pixels wide. ``valid``:
+    the source validity mask (:func:`_validity`), or None for none.
     """
     bands = image if image.ndim == 3 else image[np.newaxis]
     dtype = bands.dtype
@@ -371,7 +472,12 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
         info = np.iinfo(work)
         # the next value away from nodata, GDAL's AvoidNoData
         step = np.array([nodata + 1 if nodata == info.min else nodata - 1], dtype=work)
-        low, high = (float(info.min), float(info.max)) if work.itemsize < 8 else (-np.inf, np.inf)
+        # GDAL's clamp to the dtype's range; a 64-bit maximum has no float64 (2**63 - 1
+        # rounds up to 2**63, which overflows the cast), so the clamp stops at the largest
+        # float64 below it (64-bit images are checked to stay within +-2**53, so only the
+        # bottom of uint64's range, 0, can be reached: _check_exact_in_float64)
+        low = float(info.min)
+        high = float(info.max) if work.itemsize < 8 else float(np.nextafter(float(info.max), 0))
     else:
         step = np.array([np.nextafter(work.type(nodata), work.type(np.inf))], dtype=work)
         low, high = -np.inf, np.inf
@@ -379,8 +485,16 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
     kernel = {"nearest": _nearest_loop, "bilinear": _bilinear_loop, "cubic": _cubic_loop,
               "average": None}[method]
     compare = float(nodata) if avoid else np.nan
+    if valid is None:
+        valid = _NO_MASK
     xscale, yscale = scale
     widened = method != "nearest" and not (xscale >= 0.95 and yscale >= 0.95)
+    if widened and method != "average" and valid.size != 0:
+        raise RsgeoError(_(
+            "src_nodata with {method} widened for downsampling (scale {scale} below 0.95) is "
+            "not supported; give scale=1 for the plain {method} kernel, use "
+            "method='average' (which leaves src_nodata pixels out), or fill the nodata "
+            "pixels first").format(method=method, scale=(xscale, yscale)))
     previous = numba.get_num_threads()
     numba.set_num_threads(num_threads)
     try:
@@ -388,7 +502,7 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
             margins = [2 * max(1, int(np.ceil(1.0 / value))) for value in scale]
             inside = _average_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
                                    to_source, n_rows, row_length, out, fill, step, compare,
-                                   work.kind in "ui", low, high, margins[0], margins[1])
+                                   work.kind in "ui", low, high, margins[0], margins[1], valid)
         elif widened:
             inside = _widened_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
                                    to_source, n_rows, row_length, out, fill, step, compare,
@@ -397,14 +511,14 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
         elif method == "nearest":
             inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
                             to_source, n_rows, row_length, out, fill, step, compare,
-                            work.kind in "ui", low, high)
+                            work.kind in "ui", low, high, valid)
         else:
             # GDAL's general path (GWKRealCase) with a destination nodata, and for the types
             # without a specialised no-mask kernel
             masked = avoid or dtype.name not in _NO_MASK_TYPES
             inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
                             to_source, n_rows, row_length, out, fill, step, compare,
-                            work.kind in "ui", low, high, masked)
+                            work.kind in "ui", low, high, masked, valid)
     finally:
         numba.set_num_threads(previous)
     return (out if work == dtype else out.astype(dtype)), inside
@@ -480,14 +594,17 @@ def _store(out, band, k, value, step, nodata, is_int, low, high):
 
 @njit(cache=True, parallel=True)
 def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
-                  is_int, low, high):
+                  is_int, low, high, valid):
     """Nearest neighbour (GDAL's GWKNearest), pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
     is outside the image, write nodata; otherwise copy the value of the pixel
     that contains it, the one whose corner-based indices are floor(col) and
     floor(row). Values are copied as they are: no rounding, no AvoidNoData.
-    Returns the number of output pixels that fell inside the source.
+    With a source validity mask (``valid``, uint8 (bands, rows, cols); empty
+    for none), a band whose pixel is invalid gets nodata (GDAL's
+    ``-srcnodata``). Returns the number of output pixels that fell inside the
+    source.
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
@@ -508,7 +625,10 @@ def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
             c = int(col + _GDAL_INDEX_EPSILON)
             r = int(row + _GDAL_INDEX_EPSILON)
             for band in range(n_bands):
-                out[_u(band), _u(k)] = _pixel(bands, band, r, c)
+                if valid.size != 0 and valid[_u(band), _u(r), _u(c)] == 0:
+                    out[_u(band), _u(k)] = fill[0]
+                else:
+                    out[_u(band), _u(k)] = _pixel(bands, band, r, c)
         landed[i] = landed_in_row
     return landed.sum()
 
@@ -613,9 +733,78 @@ def _bilinear_masked_at(bands, band, col, row):
     return accumulator / (divisor if divisor != 0.0 else 1.0)
 
 
+@njit(cache=True, inline="always")
+def _bilinear_valid_at(bands, valid, band, col, row):
+    """``_bilinear_masked_at`` over the valid pixels only: (value, found).
+
+    GDAL's GWKBilinearResample4Sample with a source validity mask
+    (``-srcnodata``): the same window, ratios and order of sums, but a pixel
+    that ``valid`` marks invalid adds neither its value nor its weight, so
+    the weights of the valid ones are renormalised. ``found`` is False (the
+    output pixel is left at nodata) when the weights of the valid pixels add
+    up to less than 0.00001, GDAL's threshold.
+    """
+    height, width = bands.shape[1], bands.shape[2]
+    left_f = np.floor(col - 0.5)
+    top_f = np.floor(row - 0.5)
+    ratio_x = 1.5 - (col - left_f)
+    ratio_y = 1.5 - (row - top_f)
+    left, top = int(left_f), int(top_f)
+    if left == -1:
+        left = 0
+        ratio_x = 1.0
+    if top == -1:
+        top = 0
+        ratio_y = 1.0
+    accumulator = 0.0
+    divisor = 0.0
+    if top < height:
+        weight_left = ratio_x * ratio_y
+        weight_right = (1.0 - ratio_x) * ratio_y
+        if left < width and valid[_u(band), _u(top), _u(left)] != 0:
+            divisor += weight_left
+            accumulator += _pixel(bands, band, top, left) * weight_left
+        if left + 1 < width and valid[_u(band), _u(top), _u(left + 1)] != 0:
+            divisor += weight_right
+            accumulator += _pixel(bands, band, top, left + 1) * weight_right
+    if top + 1 < height:
+        weight_left = ratio_x * (1.0 - ratio_y)
+        weight_right = (1.0 - ratio_x) * (1.0 - ratio_y)
+        if left < width and valid[_u(band), _u(top + 1), _u(left)] != 0:
+            divisor += weight_left
+            accumulator += _pixel(bands, band, top + 1, left) * weight_left
+        if left + 1 < width and valid[_u(band), _u(top + 1), _u(left + 1)] != 0:
+            divisor += weight_right
+            accumulator += _pixel(bands, band, top + 1, left + 1) * weight_right
+    if divisor == 1.0:
+        return accumulator, True
+    if divisor < 0.00001:
+        return 0.0, False
+    return accumulator / divisor, True
+
+
+@njit(cache=True, inline="always")
+def _centre_is_invalid(valid, col, row):
+    """GDAL's check of the source pixel that contains (col, row) in its unified mask.
+
+    GDAL skips an output pixel whose containing source pixel is invalid in
+    every band (its unified validity mask) before interpolating
+    (GWKGeneralCaseThread); each band then interpolates over its own valid
+    pixels (UNIFIED_SRC_NODATA's default).
+    """
+    if valid.size == 0:
+        return False
+    c = int(col + _GDAL_INDEX_EPSILON)
+    r = int(row + _GDAL_INDEX_EPSILON)
+    for band in range(valid.shape[0]):
+        if valid[_u(band), _u(r), _u(c)] != 0:
+            return False
+    return True
+
+
 @njit(cache=True, parallel=True)
 def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
-                   is_int, low, high, masked):
+                   is_int, low, high, masked, valid):
     """Bilinear interpolation, pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
@@ -623,7 +812,9 @@ def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, 
     whose centres surround it, weight each by how close it is along the row
     and along the column (``_bilinear_at``, or ``_bilinear_masked_at``
     when ``masked``: GDAL's path with a destination nodata), round and store
-    the sum. Returns the number of output pixels that fell inside the source.
+    the sum. With a source validity mask (``valid``, empty for none), only
+    the valid neighbours count (``_bilinear_valid_at``). Returns the number
+    of output pixels that fell inside the source.
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
@@ -640,8 +831,17 @@ def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, 
                     out[_u(band), _u(k)] = fill[0]
                 continue
             landed_in_row += 1
+            if _centre_is_invalid(valid, col, row):
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
             for band in range(n_bands):
-                if masked:
+                if valid.size != 0:
+                    value, found = _bilinear_valid_at(bands, valid, band, col, row)
+                    if not found:
+                        out[_u(band), _u(k)] = fill[0]
+                        continue
+                elif masked:
                     value = _bilinear_masked_at(bands, band, col, row)
                 else:
                     value = _bilinear_at(bands, band, col, row)
@@ -663,9 +863,19 @@ def _cubic_convolution(d, f0, f1, f2, f3):
                        + d3 * (3.0 * (f1 - f2) + f3 - f0))
 
 
+@njit(cache=True, inline="always")
+def _cubic_window_is_valid(valid, band, top, left):
+    """Whether all 16 pixels of the 4 x 4 window at (top - 1, left - 1) are valid."""
+    for r in range(top - 1, top + 3):
+        for c in range(left - 1, left + 3):
+            if valid[_u(band), _u(r), _u(c)] == 0:
+                return False
+    return True
+
+
 @njit(cache=True, parallel=True)
 def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
-                is_int, low, high, masked):
+                is_int, low, high, masked, valid):
     """Cubic convolution, pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
@@ -679,7 +889,10 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
     nodata), else by GDAL's CubicConvolution formula in dy, dy², dy³
     (GWKCubicResampleNoMasks4SampleT). Round and store. Where the 4 x 4
     window leaves the image, fall back to the same path's bilinear, as GDAL
-    does. Returns the number of output pixels that fell inside the source.
+    does. With a source validity mask (``valid``, empty for none), a window
+    holding an invalid pixel falls back to the bilinear of the valid pixels
+    (GDAL's GWKCubicResample4Sample). Returns the number of output pixels
+    that fell inside the source.
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
@@ -696,6 +909,10 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
                     out[_u(band), _u(k)] = fill[0]
                 continue
             landed_in_row += 1
+            if _centre_is_invalid(valid, col, row):
+                for band in range(n_bands):
+                    out[_u(band), _u(k)] = fill[0]
+                continue
             left_f = np.trunc(col - 0.5)
             top_f = np.trunc(row - 0.5)
             dx = col - 0.5 - left_f
@@ -703,7 +920,12 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
             left, top = int(left_f), int(top_f)
             if not (left >= 1 and left + 2 < width and top >= 1 and top + 2 < height):
                 for band in range(n_bands):
-                    if masked:
+                    if valid.size != 0:
+                        value, found = _bilinear_valid_at(bands, valid, band, col, row)
+                        if not found:
+                            out[_u(band), _u(k)] = fill[0]
+                            continue
+                    elif masked:
                         value = _bilinear_masked_at(bands, band, col, row)
                     else:
                         value = _bilinear_at(bands, band, col, row)
@@ -713,6 +935,13 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
             wy0, wy1, wy2, wy3 = _cubic_weights(dy)
             c = left - 1
             for band in range(n_bands):
+                if valid.size != 0 and not _cubic_window_is_valid(valid, band, top, left):
+                    value, found = _bilinear_valid_at(bands, valid, band, col, row)
+                    if found:
+                        _store(out, band, k, value, step, nodata, is_int, low, high)
+                    else:
+                        out[_u(band), _u(k)] = fill[0]
+                    continue
                 # CONVOL4 along each of the four rows
                 r = top - 1
                 along0 = (wx0 * _pixel(bands, band, r, c) + wx1 * _pixel(bands, band, r, c + 1)
@@ -877,7 +1106,7 @@ def _corner_to_source(to_source, j, i):
 
 @njit(cache=True, parallel=True)
 def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
-                  is_int, low, high, x_margin, y_margin):
+                  is_int, low, high, x_margin, y_margin, valid):
     """Area-weighted average (GDAL's GWKAverageOrMode, "average"), cell by cell.
 
     For each output cell: take its top-left and bottom-right corners to the
@@ -888,7 +1117,9 @@ def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
     width and height inside the cell (1 inside, less on the cell's edges);
     the mean is updated pixel by pixel, row by row, as GDAL's weighted
     incremental mean: total += w; mean += (w / total) * (v - mean). Round
-    and store; a cell with no weight gets nodata.
+    and store; a cell with no weight gets nodata. With a source validity
+    mask (``valid``, empty for none), invalid pixels are left out, as GDAL
+    leaves out ``-srcnodata`` pixels.
     Returns the number of output cells that were averaged.
     """
     n_bands, height, width = bands.shape
@@ -930,6 +1161,8 @@ def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
                             weight = weight_y * (1.0 - (stop_x - x_max))
                         else:
                             weight = weight_y
+                        if valid.size != 0 and valid[_u(band), _u(r), _u(c)] == 0:
+                            continue
                         if weight > 0.0:
                             total += weight
                             mean += (weight / total) * (_pixel(bands, band, r, c) - mean)
@@ -986,7 +1219,7 @@ def grid_positions(shape, transform=None, first_row=0):
 
 
 def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
-         num_threads=1, scale=None):
+         num_threads=1, scale=None, src_nodata=None):
     """The corrected image: every output cell filled from where ``mapping`` sends it.
 
     This is the lecture's "construir uma nova imagem corrigida": the output grid
@@ -1032,6 +1265,10 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         a chunk's source window is mostly empty) and gives each its own
         scale, below 0.95 on a rotated source even at the same pixel size;
         rsgeo uses one. Give both the same scale to compare them.
+    src_nodata : int or float or None
+        The source's nodata value (gdalwarp's ``-srcnodata``; NaN for NaN
+        pixels), with GDAL's semantics (see :func:`interpolate`); also for
+        "average", which leaves such pixels out.
 
     Returns
     -------
@@ -1045,7 +1282,14 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         integers; if ``mapping`` does not return an (n, 2) array; or if no
         output cell lands inside the source image (the mapping goes the wrong
         way, image -> map, or the output grid is somewhere else): a warp
-        that would return nothing but nodata.
+        that would return nothing but nodata; if ``transform`` holds NaN or
+        infinity; if ``strip_rows`` is not a whole number from 1; if the
+        output would not fit in this machine's memory (the message gives
+        its size in GiB: choose a coarser grid or warp a window at a time).
+    TypeError
+        If ``mapping`` is neither callable nor an ``affine.Affine`` (a GDAL
+        6-tuple: convert it with ``affine.Affine.from_gdal``), or
+        ``transform`` is not an ``affine.Affine``.
 
     References
     ----------
@@ -1063,25 +1307,33 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     check_choice(method, "method", WARP_METHODS)
     nodata = as_nodata(nodata, image.dtype)
     num_threads = as_num_threads(num_threads)
-    out_rows, out_cols = as_shape(shape)
-    to_map = transform if transform is not None else affine.Affine.identity()
+    bands = image.shape[0] if image.ndim == 3 else 1
+    out_rows, out_cols = as_output_shape(shape, image.dtype, bands)
+    to_map = as_affine(transform) if transform is not None else affine.Affine.identity()
+    _check_mapping(mapping)
+    strip_rows = as_integer(strip_rows, "strip_rows", low=1,
+                            why="rows of the output grid computed at a time")
+    _check_exact_in_float64(image, method)
+    valid = _validity(image, src_nodata)
     scale = (as_scale(scale) if scale is not None
              else grid_scale(mapping, (out_rows, out_cols), to_map, image.shape[-2:]))
     height, width = image.shape[-2:]
-    bands = image.shape[0] if image.ndim == 3 else 1
-    out = np.empty((bands, out_rows, out_cols), dtype=image.dtype)
+    dtype = image.dtype
+    image = _native(image)    # float16 and big-endian converted once, not once per strip
     if isinstance(mapping, affine.Affine):
         # an affine map: each output pixel's source position (or average's cell corners)
         # is computed in the kernel through the two geotransforms, as GDAL does
         two_steps = np.array(to_map.to_gdal() + mapping.to_gdal(), dtype=np.float64)
         flat, landed = _resample(image, method, nodata, num_threads, _NO_POSITIONS,
-                                 _NO_POSITIONS, two_steps, out_rows * out_cols, out_cols, scale)
-        out = flat.reshape(out.shape)
+                                 _NO_POSITIONS, two_steps, out_rows * out_cols, out_cols, scale,
+                                 valid)
+        out = flat.reshape((bands, out_rows, out_cols)).astype(dtype, copy=False)
         if not landed:
             x, y = to_map @ (np.array([0.5, out_cols - 0.5]), np.array([[0.5], [out_rows - 0.5]]))
             corner_cols, corner_rows = mapping @ (x, y)
             spans = [(corner_cols.min(), corner_cols.max(), corner_rows.min(), corner_rows.max())]
     else:
+        out = np.empty((bands, out_rows, out_cols), dtype=dtype)
         landed = 0
         spans = []
         for start in range(0, out_rows, strip_rows):
@@ -1100,7 +1352,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
             source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
             strip, inside = _resample(image, method, nodata, num_threads, source_cols,
                                       source_rows, _NO_AFFINE, (stop - start) * out_cols,
-                                      out_cols, scale)
+                                      out_cols, scale, valid)
             out[:, start:stop, :] = strip.reshape(bands, stop - start, out_cols)
             if not landed:
                 spans.append((source_cols.min(), source_cols.max(),

@@ -50,7 +50,9 @@ that collides with the destination nodata inconsistently across its warp paths
 import numpy as np
 from numba import njit
 
-from ._checks import as_bands_first, as_image, as_shape, check_choice
+from ._checks import as_bands_first, as_image, as_integer, as_output_shape, as_shape, check_choice
+from ._i18n import _
+from .data import _as_affine
 from .errors import CRSError, DataError, GCPError, GridError, ImageError, ModelError, RsgeoError
 from .resample import METHODS, interpolate
 from .tiepoints import measure_shifts
@@ -666,15 +668,11 @@ def _gdal_inverse(gt):
 
 
 def _as_gdal(transform, name):
-    try:
-        gt = transform.to_gdal() if hasattr(transform, "to_gdal") else tuple(transform)
-        gt = np.array([float(v) for v in gt])
-    except (TypeError, ValueError):
-        gt = None
-    if gt is None or gt.size != 6 or not np.isfinite(gt).all():
-        raise GridError(f"{name} must be an affine.Affine (pixel corner -> map), got "
-                        f"{transform!r}")
-    return gt
+    """GDAL's 6 numbers of an affine.Affine or a GDAL-ordered 6-sequence (rsgeo.data's rule)."""
+    if transform is None:
+        raise GridError(_("{name} is None; give the grid's affine.Affine (pixel corner -> "
+                          "map)").format(name=name))
+    return np.array(_as_affine(transform, name).to_gdal(), dtype=np.float64)
 
 
 @njit(cache=True)
@@ -745,35 +743,62 @@ def dem_height(dem, dem_transform, x, y, dem_nodata=None):
     >>> float(dem_height(dem, affine.Affine(1, 0, 0, 0, -1, 2), 1.0, 1.0))
     15.0
     """
-    dem = np.asarray(dem, dtype=np.float64)
-    if dem.ndim != 2 or min(dem.shape) < 1:
-        raise ImageError(f"dem must be a 2-D (rows, cols) array of heights, got shape {dem.shape}")
-    inverse = _gdal_inverse(_as_gdal(dem_transform, "dem_transform"))
     x = np.asarray(x, dtype=np.float64)
     y = np.asarray(y, dtype=np.float64)
     if x.shape != y.shape:
         raise RsgeoError(f"x and y must have the same shape, got {x.shape} and {y.shape}")
+    prepared = _prepare_dem(dem, dem_transform, dem_nodata)
+    heights, outside, holed = _sample_dem(prepared, x, y)
+    _raise_dem_problems(prepared, outside, holed, x.size)
+    return heights
+
+
+def _prepare_dem(dem, dem_transform, dem_nodata):
+    """(DEM with NaN holes, its inverse geotransform, its holes, its transform) for sampling."""
+    dem = np.asarray(dem, dtype=np.float64)
+    if dem.ndim != 2 or min(dem.shape) < 1:
+        raise ImageError(f"dem must be a 2-D (rows, cols) array of heights, got shape {dem.shape}")
+    inverse = _gdal_inverse(_as_gdal(dem_transform, "dem_transform"))
     holes = ~np.isfinite(dem)
     if dem_nodata is not None:
         holes |= dem == dem_nodata
-    work = np.where(holes, np.nan, dem)
+    work = np.ascontiguousarray(np.where(holes, np.nan, dem))
+    return work, inverse, holes, dem_transform
+
+
+def _sample_dem(prepared, x, y):
+    """Heights at points (shape of ``x``); with (count, first x, first y) of the points outside
+    the DEM and of those on a hole (count 0: none)."""
+    work, inverse, _holes, _transform = prepared
     flat_x, flat_y = np.ravel(x), np.ravel(y)
     out = np.empty(flat_x.size)
-    outside = _dem_heights(np.ascontiguousarray(work), inverse, flat_x, flat_y, out)
+    outside = _dem_heights(work, inverse, flat_x, flat_y, out)
+    outside_first = holed_first = (0, 0.0, 0.0)
     if outside:
         first = int(np.flatnonzero(np.isnan(out) & _outside_mask(work.shape, inverse, flat_x,
                                                                      flat_y))[0])
-        raise GridError(f"the DEM does not cover {outside} of {flat_x.size} points (first at "
-                        f"x={flat_x[first]:.6f}, y={flat_y[first]:.6f}; DEM bounds "
-                        f"{_bounds(dem.shape, dem_transform)}); give a DEM that covers the "
+        outside_first = (outside, flat_x[first], flat_y[first])
+    else:
+        missing = np.isnan(out)
+        if missing.any():
+            first = int(np.flatnonzero(missing)[0])
+            holed_first = (int(missing.sum()), flat_x[first], flat_y[first])
+    return out.reshape(np.shape(x)), outside_first, holed_first
+
+
+def _raise_dem_problems(prepared, outside, holed, n):
+    """The errors of points outside the DEM or over its holes (counts over ``n`` points)."""
+    work, _inverse, holes, dem_transform = prepared
+    if outside[0]:
+        raise GridError(f"the DEM does not cover {outside[0]} of {n} points (first at "
+                        f"x={outside[1]:.6f}, y={outside[2]:.6f}; DEM bounds "
+                        f"{_bounds(work.shape, dem_transform)}); give a DEM that covers the "
                         "output grid")
-    if np.isnan(out).any():
-        first = int(np.flatnonzero(np.isnan(out))[0])
+    if holed[0]:
         rows, cols = np.nonzero(holes)
         raise ImageError(f"the DEM has nodata holes ({holes.sum()} cells, e.g. row {rows[0]}, "
-                         f"col {cols[0]}) under {int(np.isnan(out).sum())} points (first at "
-                         f"x={flat_x[first]:.6f}, y={flat_y[first]:.6f}); fill them first")
-    return out.reshape(x.shape)
+                         f"col {cols[0]}) under {holed[0]} points (first at "
+                         f"x={holed[1]:.6f}, y={holed[2]:.6f}); fill them first")
 
 
 def _outside_mask(shape, inverse, x, y):
@@ -789,10 +814,10 @@ def _bounds(shape, transform):
     return f"x {min(xs):.6f} to {max(xs):.6f}, y {min(ys):.6f} to {max(ys):.6f}"
 
 
-def _grid_centres(gt, shape):
-    """Map coordinates of cell centres as GDAL's GenImgProjTransform computes them."""
+def _grid_centres(gt, shape, start=0, stop=None):
+    """Map coordinates of cell centres (rows start to stop) as GDAL's GenImgProjTransform does."""
     cols = np.arange(shape[1]) + 0.5
-    rows = (np.arange(shape[0]) + 0.5)[:, None]
+    rows = (np.arange(start, shape[0] if stop is None else stop) + 0.5)[:, None]
     x = gt[0] + cols * gt[1] + rows * gt[2]
     y = gt[3] + cols * gt[4] + rows * gt[5]
     return x, y
@@ -810,8 +835,13 @@ def _to_crs(x, y, src, dst):
     return np.reshape(tx, np.shape(x)), np.reshape(ty, np.shape(y))
 
 
+# cells of one strip of orthorectify (about 450 bytes each while it is computed)
+_STRIP_CELLS = 2 ** 19
+
+
 def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, method="bilinear",
-                 nodata=0, dst_crs=None, dem_crs=None, dem_nodata=None, num_threads=1):
+                 nodata=0, dst_crs=None, dem_crs=None, dem_nodata=None, num_threads=1,
+                 strip_rows=None):
     """The orthoimage on an output grid: DEM height, RPC, interpolation, cell by cell.
 
     For each output cell centre: its longitude and latitude (through
@@ -830,23 +860,32 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         Its RPC (a mapping is read with :meth:`RPCModel.from_dict`).
     dem : (rows, cols) array_like
         Heights above the ellipsoid (m); NaN marks holes.
-    dem_transform : affine.Affine
-        The DEM's geotransform, in ``dem_crs``.
-    dst_transform : affine.Affine
-        The output grid's geotransform, in ``dst_crs``.
+    dem_transform : affine.Affine or sequence of 6 numbers
+        The DEM's geotransform, in ``dem_crs``: an affine.Affine, or 6 numbers
+        in GDAL's order (x0, pixel width, row rotation, y0, column rotation,
+        pixel height), as :func:`rsgeo.data.save` reads them (a tuple in
+        affine.Affine's order, pixel width first, is refused).
+    dst_transform : affine.Affine or sequence of 6 numbers
+        The output grid's geotransform, in ``dst_crs``; as ``dem_transform``.
     dst_shape : (rows, cols)
-        Output grid size.
+        Output grid size (refused if the output alone would not fit in
+        this machine's memory).
     method : {"nearest", "bilinear", "cubic"}
         Interpolator for the image.
     nodata : number or None
         Value of output cells that see no pixel of the image.
-    dst_crs, dem_crs : str or rasterio CRS, optional
-        CRS of the output grid and of the DEM; None is EPSG:4326 (longitude,
-        latitude in degrees).
+    dst_crs, dem_crs : str, int or rasterio CRS, optional
+        CRS of the output grid and of the DEM (see :func:`rsgeo.georef.as_crs`);
+        None is EPSG:4326 (longitude, latitude in degrees).
     dem_nodata : float, optional
         DEM value marking holes, besides NaN.
     num_threads : int
         Threads for the interpolation.
+    strip_rows : int, optional
+        Output rows computed at a time (as :func:`rsgeo.resample.warp`):
+        memory is the output plus about 450 bytes per cell of one strip. By
+        default about 2**19 cells a strip (256 rows of a 2048-wide grid:
+        some 240 MB). The result does not depend on it.
 
     Returns
     -------
@@ -855,9 +894,14 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
 
     Raises
     ------
+    TypeError
+        If a transform is neither an affine.Affine nor a sequence of numbers.
     ValueError
         If the image is not 2-D or 3-D, the method is unknown, the RPC
-        mapping lacks keys, the DEM does not cover the output grid (how
+        mapping lacks keys, a transform is a 6-tuple in affine.Affine's order
+        or its pixels have no area, a CRS is not one PROJ knows, the output
+        would not fit in memory, ``strip_rows`` is not a positive whole
+        number, the DEM does not cover the output grid (how
         many cells, the first one), the DEM has holes under the grid, the
         grid's longitudes or latitudes are out of range, or no output cell
         sees the image (a grid in the wrong place or CRS).
@@ -879,23 +923,49 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     >>> ortho.shape
     (20, 20)
     """
+    from .georef import as_crs
+
     image = as_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
     rpc = rpc if isinstance(rpc, RPCModel) else RPCModel.from_dict(rpc)
-    shape = as_shape(dst_shape, "dst_shape")
+    bands = image.shape[0] if image.ndim == 3 else 1
+    shape = as_output_shape(dst_shape, image.dtype, bands, "dst_shape")
+    strip_rows = (max(1, _STRIP_CELLS // shape[1]) if strip_rows is None
+                  else as_integer(strip_rows, "strip_rows", low=1))
     dst_gt = _as_gdal(dst_transform, "dst_transform")
-    x, y = _grid_centres(dst_gt, shape)
-    x, y = np.broadcast_arrays(x, y)
-    lon, lat = _to_crs(x, y, dst_crs, "EPSG:4326")
-    dem_x, dem_y = _to_crs(lon, lat, "EPSG:4326", dem_crs)
-    heights = dem_height(dem, dem_transform, dem_x, dem_y, dem_nodata)
-    cols, rows = rpc.project(lon, lat, heights)
+    dst_crs = as_crs("EPSG:4326" if dst_crs is None else dst_crs, "dst_crs")
+    dem_crs = as_crs("EPSG:4326" if dem_crs is None else dem_crs, "dem_crs")
+    prepared = _prepare_dem(dem, dem_transform, dem_nodata)
     height, width = image.shape[-2:]
-    if not np.any((cols >= 0) & (cols < width) & (rows >= 0) & (rows < height)):
+    out = np.empty((bands,) + shape, dtype=image.dtype)
+    outside, holed = [0, 0.0, 0.0], [0, 0.0, 0.0]
+    seen = False
+    # in strips of rows, as rsgeo.resample.warp: memory is the output plus one strip's
+    # positions (each cell is computed alone, so the pixels do not depend on the strips)
+    for start in range(0, shape[0], strip_rows):
+        stop = min(start + strip_rows, shape[0])
+        x, y = _grid_centres(dst_gt, shape, start, stop)
+        x, y = np.broadcast_arrays(x, y)
+        lon, lat = _to_crs(x, y, dst_crs, "EPSG:4326")
+        dem_x, dem_y = _to_crs(lon, lat, "EPSG:4326", dem_crs)
+        heights, strip_outside, strip_holed = _sample_dem(prepared, dem_x, dem_y)
+        for total, found in ((outside, strip_outside), (holed, strip_holed)):
+            if found[0] and not total[0]:
+                total[1:] = found[1:]
+            total[0] += found[0]
+        if outside[0] or holed[0]:
+            continue                      # counted over the whole grid, then refused below
+        cols, rows = rpc.project(lon, lat, heights)
+        seen = seen or bool(np.any((cols >= 0) & (cols < width) & (rows >= 0) & (rows < height)))
+        out[:, start:stop] = interpolate(image, cols, rows, method, nodata=nodata,
+                                         num_threads=num_threads).reshape(bands, stop - start,
+                                                                          shape[1])
+    _raise_dem_problems(prepared, outside, holed, shape[0] * shape[1])
+    if not seen:
         raise GridError(f"no output cell sees the image ({height} x {width} px): the grid is "
                         "elsewhere; check dst_transform and dst_crs against the RPC's area "
                         f"(lon {rpc.offsets['LONG']:.4f}, lat {rpc.offsets['LAT']:.4f})")
-    return interpolate(image, cols, rows, method, nodata=nodata, num_threads=num_threads)
+    return out if image.ndim == 3 else out[0]
 
 
 # -- A physical sensor to fit RPCs to ----------------------------------------

@@ -30,7 +30,7 @@ from math import comb
 import numpy as np
 from scipy.interpolate import RBFInterpolator
 
-from ._checks import as_number, as_points
+from ._checks import as_integer, as_number, as_points
 from ._i18n import _
 from .errors import GCPError, ModelError
 
@@ -51,6 +51,7 @@ __all__ = [
     "min_gcps",
     "n_parameters",
     "newton_inverse",
+    "outside_hull",
     "registered",
     "term_names",
 ]
@@ -107,6 +108,33 @@ class GeometricModel:
             In the base class: a model defines its own inverse.
         """
         raise NotImplementedError(f"{type(self).__name__} does not define its inverse")
+
+    def outside_gcps(self, points):
+        """How far each point lies outside the GCPs' convex hull, in GCP extents (0 inside).
+
+        A model is only trustworthy where its GCPs are: a polynomial of degree
+        2 or 3 grows like the cube of the distance beyond them (GCPs clustered
+        in 500 m fit to 0.35 px and are 89,000 px off at a far corner). See
+        :func:`outside_hull`; :func:`rsgeo.accuracy.predicted_error_map` gives
+        the predicted error itself.
+
+        Parameters
+        ----------
+        points : (n, 2) array_like
+            Points in the model's input (``src``) coordinates.
+
+        Returns
+        -------
+        ndarray, shape (n,)
+            Distance beyond the hull divided by the larger side of the GCPs'
+            bounding box: 0 inside, 1 a whole extent away.
+
+        Raises
+        ------
+        GCPError
+            If the points are not (n, 2) finite numbers.
+        """
+        return outside_hull(self.src, points)
 
     def residuals(self, src, dst):
         """Distance between where the model puts each ``src`` point and its ``dst`` point.
@@ -173,6 +201,20 @@ def _same_points(src, dst):
     return src, dst
 
 
+def _as_real_points(points, name):
+    """``points`` as :func:`as_points` does, refusing complex, bool and text arrays (TypeError):
+    NumPy would silently drop an imaginary part or read True as 1."""
+    try:
+        kind = np.asarray(points).dtype.kind
+    except (TypeError, ValueError):
+        kind = "O"                      # ragged or odd input: as_points says what is wrong
+    if kind in "cbUS":
+        what = {"c": "complex", "b": "bool", "U": "text", "S": "text"}[kind]
+        raise TypeError(_("{name} must hold real numbers (map or image coordinates), got a "
+                          "{what} array").format(name=name, what=what))
+    return as_points(points, name)
+
+
 def _residual_vectors(model, src, dst):
     """model(src) and |model(src) - dst|, with the inputs checked."""
     src, dst = _same_points(src, dst)
@@ -187,6 +229,62 @@ def _rms_of(difference):
     if len(difference) == 0:
         raise GCPError("predicted and observed hold no points; the RMS needs at least one")
     return float(np.sqrt(np.mean(np.sum(difference ** 2, axis=1))))
+
+
+def outside_hull(gcps, points):
+    """Distance of each point beyond the convex hull of ``gcps``, in units of the GCPs' extent.
+
+    0 for a point inside the hull (or on it); otherwise its distance to the
+    hull divided by the larger side of the GCPs' bounding box. Use it to see
+    where a model extrapolates: beyond about 0.1 a degree-2 or -3 polynomial
+    is no longer controlled by its GCPs.
+
+    Parameters
+    ----------
+    gcps : (n, 2) array_like
+        The GCPs' positions (a model's ``src``).
+    points : (m, 2) array_like
+        The points to rate, in the same coordinates.
+
+    Returns
+    -------
+    ndarray, shape (m,)
+
+    Raises
+    ------
+    GCPError
+        If either array is not (n, 2) finite numbers.
+
+    Examples
+    --------
+    >>> square = [[0, 0], [10, 0], [0, 10], [10, 10]]
+    >>> outside_hull(square, [[5, 5], [15, 5], [10, 30]]).tolist()
+    [0.0, 0.5, 2.0]
+    """
+    from scipy.spatial import ConvexHull, QhullError
+
+    gcps = as_points(gcps, "gcps")
+    points = as_points(points, "points")
+    extent = float(np.ptp(gcps, axis=0).max()) or 1.0
+    try:
+        corners = gcps[ConvexHull(gcps).vertices]
+    except (QhullError, ValueError):          # fewer than 3 points or collinear: their segment
+        ends = np.argsort(gcps @ (gcps[np.argmax(np.hypot(*(gcps - gcps[0]).T))] - gcps[0]))
+        corners = gcps[[ends[0], ends[-1]]]
+    start, end = corners, np.roll(corners, -1, axis=0)
+    edge = end - start
+    length2 = np.maximum(np.sum(edge**2, axis=1), 1e-300)
+    distance = np.empty(len(points))
+    for first in range(0, len(points), 65536):         # bounded memory for large grids
+        p = points[first:first + 65536, np.newaxis, :]
+        t = np.clip(np.sum((p - start) * edge, axis=2) / length2, 0.0, 1.0)
+        nearest = np.hypot(*np.moveaxis(p - (start + t[..., np.newaxis] * edge), 2, 0))
+        inside = np.zeros(len(p), bool)
+        if len(corners) >= 3:                               # counter-clockwise hull
+            cross = edge[:, 0] * (p[..., 1] - start[:, 1]) - edge[:, 1] * (p[..., 0] - start[:, 0])
+            inside = (cross >= -1e-12 * extent**2).all(axis=1)
+        distance[first:first + 65536] = np.where(inside, 0.0, nearest.min(axis=1))
+    return distance / extent
 
 
 class InverseModel(GeometricModel):
@@ -239,7 +337,7 @@ class InverseModel(GeometricModel):
         return f"InverseModel(of {self.forward!r})"
 
 
-def newton_inverse(model, start, tolerance, max_iterations, failure):
+def newton_inverse(model, start, tolerance, max_iterations, failure, floor=0.0):
     """The exact inverse of ``model`` by Newton's method, started from an approximate inverse.
 
     Each point q starts from ``start(q)`` and is polished with ``model.jacobian``
@@ -262,6 +360,10 @@ def newton_inverse(model, start, tolerance, max_iterations, failure):
     failure : callable
         ``failure(failed, targets)`` -> the message of the ``ModelError`` raised
         when the points flagged in ``failed`` did not converge.
+    floor : float
+        Smallest accepted limit, in dst units: what float64 evaluation of the
+        model can reach (a thin-plate spline on thousands of GCPs cannot be
+        evaluated closer than its rounding, so a limit below it never converges).
 
     Returns
     -------
@@ -284,7 +386,8 @@ def newton_inverse(model, start, tolerance, max_iterations, failure):
     array([[3., 7.]])
     """
     extent = float(np.abs(model.dst - model.dst.mean(axis=0)).max()) or 1.0
-    limit = as_number(tolerance, "tolerance", low=0, why="relative to the dst extent") * extent
+    relative = as_number(tolerance, "tolerance", low=0, why="relative to the dst extent")
+    limit = max(relative * extent, as_number(floor, "floor", low=0, why="dst units"))
 
     def solve(targets):
         points = start(targets)
@@ -317,6 +420,7 @@ _TERMS = ((0, 0), (1, 0), (0, 1), (1, 1), (2, 0), (0, 2), (2, 1), (1, 2), (3, 0)
 
 
 def _check_order(order):
+    order = as_integer(order, "order", why="a polynomial's degree: 1, 2 or 3")
     if order not in ORDERS:
         raise GCPError(f"polynomial order must be 1, 2 or 3 (the lecture's degrees), "
                        f"got {order!r}")
@@ -437,6 +541,13 @@ class PolynomialModel(GeometricModel):
 
     kind = "polynomial"
 
+    def __post_init__(self):
+        # the model's own copies: editing the caller's arrays afterwards must not move it
+        self.coefficients = np.array(self.coefficients, dtype=np.float64)
+        self.origin = np.array(self.origin, dtype=np.float64)
+        self.src = np.array(self.src, dtype=np.float64)
+        self.dst = np.array(self.dst, dtype=np.float64)
+
     @property
     def n_parameters(self):
         """Free parameters: two coefficients per term.
@@ -515,7 +626,7 @@ class PolynomialModel(GeometricModel):
         coefficients = self._scaled_coefficients()
         return np.stack([d_dx @ coefficients.T, d_dy @ coefficients.T], axis=-1)
 
-    def inverse(self, tolerance=1e-9, max_iterations=50):
+    def inverse(self, tolerance=1e-9, max_iterations=50, reach=1.0):
         """The exact inverse (dst -> src), by Newton's method on this polynomial.
 
         Each point starts from :meth:`reverse` (the separately fitted
@@ -523,18 +634,30 @@ class PolynomialModel(GeometricModel):
         times the GCPs' dst extent (:func:`newton_inverse`). Inside the GCPs'
         area a well-posed model is one-to-one and this converges in a few steps.
 
+        A polynomial of degree 2 or 3 maps several points onto the same one:
+        far from its GCPs Newton's method can converge to another preimage.
+        For order >= 2 a solution is refused (``ModelError``) when it lies
+        more than ``reach`` GCP extents outside the GCPs' convex hull
+        (:func:`outside_hull`) or where the polynomial's Jacobian has the
+        other sign than at the GCPs (the other side of a fold).
+
         Parameters
         ----------
         tolerance : float
             Largest accepted ``|model(p) - q|``, relative to the extent of ``dst``.
         max_iterations : int
+            Newton steps at most.
+        reach : float
+            For order >= 2: farthest accepted preimage beyond the GCPs' hull,
+            in GCP extents (1: one extent away).
 
         Returns
         -------
         InverseModel
             Callable on (n, 2) dst points; raises ``ModelError`` for points
             where the polynomial has no inverse (it folds there, or its
-            Jacobian is singular), typically far outside the GCPs.
+            Jacobian is singular), typically far outside the GCPs, or whose
+            preimage lies beyond ``reach`` (another preimage).
 
         Raises
         ------
@@ -555,7 +678,32 @@ class PolynomialModel(GeometricModel):
                     "converge, so the polynomial folds or is singular there; keep the points "
                     "inside the GCPs' area")
 
-        return newton_inverse(self, self.reverse(), tolerance, max_iterations, failure)
+        reach = as_number(reach, "reach", low=0, why="GCP extents beyond the GCPs' hull")
+        newton = newton_inverse(self, self.reverse(), tolerance, max_iterations, failure)
+        if self.order == 1:
+            return newton
+        sign = np.sign(np.median(np.linalg.det(self.jacobian(self.src))))
+
+        def solve(targets):
+            points = newton(targets)
+            beyond = self.outside_gcps(points)
+            other_sheet = np.sign(np.linalg.det(self.jacobian(points))) != sign
+            far = (beyond > reach) | other_sheet
+            if far.any():
+                first = int(np.flatnonzero(far)[0])
+                raise ModelError(_(
+                    "the order-{order} polynomial's preimage of {count} of {n} points lies far "
+                    "outside its GCPs (first: {target} -> {point}, {beyond:.3g} GCP extents "
+                    "beyond their hull{fold}): a polynomial of degree 2 or 3 has other "
+                    "preimages there and none is trustworthy; keep the points inside the "
+                    "GCPs' area, add GCPs there, or use order 1").format(
+                        order=self.order, count=int(far.sum()), n=len(targets),
+                        target=targets[first].tolist(), point=points[first].round(3).tolist(),
+                        beyond=float(beyond[first]),
+                        fold=_(", across a fold") if other_sheet[first] else ""))
+            return points
+
+        return InverseModel(self, solve)
 
     def standard_errors(self):
         """Standard error of every coefficient, shape (2, m), from the least-squares covariance.
@@ -643,6 +791,15 @@ class PolynomialModel(GeometricModel):
         return table
 
 
+#: Largest accepted condition number of the normalised design of an order-n polynomial is this
+#: to the power n: a design's condition number grows like (length / width)^n for GCPs that
+#: spread over a strip, so this refuses GCPs whose strip is more than 1000 times longer than
+#: wide. There a GCP error of 0.1 px across the strip tilts the fit by a pixel 10 strip widths
+#: away at order 1 (and far more at orders 2 and 3): the coefficients say nothing. QGIS's own
+#: test GCPs (a 1.5 km × 62 km strip, condition 2.9e6 at order 3) stay well below it.
+_MAX_SPREAD_RATIO = 1000.0
+
+
 def fit_polynomial(src, dst, order):
     """Least-squares polynomial of degree ``order`` from ``src`` to ``dst`` points.
 
@@ -668,7 +825,11 @@ def fit_polynomial(src, dst, order):
         If the arrays are not (n, 2) of the same length, hold NaN or infinity,
         the order is not 1-3, there are fewer GCPs than ``min_gcps(order)``,
         or the GCPs are collinear or repeated so that the system has no unique
-        solution.
+        solution, or nearly collinear (the normalised design's condition
+        number above 1000**order, :data:`_MAX_SPREAD_RATIO`).
+    TypeError
+        If an array is complex, bool or text, or the order is not a number
+        (True, "2").
 
     Examples
     --------
@@ -677,8 +838,8 @@ def fit_polynomial(src, dst, order):
     >>> model([[5.0, 5.0]]).round(6)
     array([[11., 11.]])
     """
-    src = as_points(src, "src")
-    dst = as_points(dst, "dst")
+    src = _as_real_points(src, "src")
+    dst = _as_real_points(dst, "dst")
     order = _check_order(order)
     if len(src) != len(dst):
         raise GCPError(_("src and dst must hold the same GCPs, got {n_src} and {n_dst} points")
@@ -694,6 +855,16 @@ def fit_polynomial(src, dst, order):
             "the GCPs do not determine an order-{order} polynomial: they are collinear, repeated "
             "or too clustered (rank {rank} of the {n} needed); spread the GCPs over the image")
             .format(order=order, rank=rank, n=needed))
+    condition = float(np.linalg.cond(matrix))
+    if condition > _MAX_SPREAD_RATIO**order:
+        raise GCPError(_(
+            "the GCPs are (nearly) collinear for an order-{order} polynomial: its design's "
+            "condition number is {condition:.3g} (above {limit:.0e}), so the GCPs spread about "
+            "{ratio:.0f} times less across than along and the coefficients would be set by their "
+            "errors; add GCPs off the line they follow (spread them over the image) or use a "
+            "lower order").format(order=order, condition=condition,
+                                  limit=_MAX_SPREAD_RATIO**order,
+                                  ratio=condition ** (1 / order)))
     scaled = np.linalg.lstsq(matrix, dst, rcond=None)[0]
     coefficients = (scaled / scale**_powers(needed)[:, np.newaxis]).T
     return PolynomialModel(order, coefficients, origin, scale, src, dst)
@@ -751,7 +922,8 @@ class MatrixModel(GeometricModel):
         self.matrix = matrix / matrix[2, 2]
         self.kind = kind
         self.n_parameters = n_parameters(kind)
-        self.src, self.dst = src, dst
+        self.src = None if src is None else np.array(src, dtype=np.float64)
+        self.dst = None if dst is None else np.array(dst, dtype=np.float64)
 
     def __call__(self, points):
         """Map (n, 2) points through the matrix.
@@ -880,20 +1052,30 @@ class TPSModel(GeometricModel):
     src, dst : (n, 2) ndarray
         The GCPs, checked by :func:`fit_transform`.
 
+    skipped : sequence of int
+        Rows of the GCPs given to :func:`fit_transform` that repeated an
+        earlier GCP exactly (same src and dst) and were left out, as GDAL's
+        TPS transformer does.
+
     Attributes
     ----------
     kind : str
         "tps".
     n_parameters : int
         2 (n + 3): n weights and 3 affine coefficients per output.
+    skipped : tuple of int
+        The exact duplicates left out.
     """
 
     kind = "tps"
 
-    def __init__(self, src, dst):
-        self.src, self.dst = src, dst
-        self.n_parameters = n_parameters("tps", n_gcps=len(src))
-        self._spline = RBFInterpolator(src, dst, kernel="thin_plate_spline", degree=1)
+    def __init__(self, src, dst, skipped=()):
+        self.src = np.array(src, dtype=np.float64)
+        self.dst = np.array(dst, dtype=np.float64)
+        self.skipped = tuple(skipped)
+        self.n_parameters = n_parameters("tps", n_gcps=len(self.src))
+        self._spline = RBFInterpolator(self.src, self.dst, kernel="thin_plate_spline", degree=1)
+        self._floor = None
 
     def __call__(self, points):
         """Evaluate the spline at (n, 2) points.
@@ -969,7 +1151,11 @@ class TPSModel(GeometricModel):
 
         Each point starts from :meth:`reverse` (the spline fitted the other way
         round) and is polished until model(p) = q within ``tolerance`` times the
-        dst extent (:func:`newton_inverse`). This is what GDAL's warper uses:
+        dst extent (:func:`newton_inverse`), or within what float64 evaluation
+        of the spline can reach if that is more: ten times its largest miss at
+        its own GCPs (a spline through thousands of noisy GCPs sums terms far
+        larger than its value, and GDAL autotest's 2,115-GCP case cannot be
+        evaluated to 1e-10 of its extent). This is what GDAL's warper uses:
         ``gdalwarp -tps`` with a spline fitted image -> map maps every output
         cell back by inverting it.
 
@@ -994,24 +1180,85 @@ class TPSModel(GeometricModel):
                     "points: Newton's method did not converge (the spline folds there); keep "
                     "the points inside the GCPs' area")
 
-        return newton_inverse(self, self.reverse(), tolerance, max_iterations, failure)
+        return newton_inverse(self, self.reverse(), tolerance, max_iterations, failure,
+                              floor=self.evaluation_floor())
+
+    def evaluation_floor(self):
+        """How closely float64 evaluation of this spline can meet a target, dst units.
+
+        Ten times its largest miss at its own GCPs, where it passes exactly in
+        exact arithmetic: what is left is the rounding of the linear solve and
+        of the sums of the kernel terms.
+
+        Returns
+        -------
+        float
+        """
+        if self._floor is None:
+            miss = np.hypot(*(self(self.src) - self.dst).T).max()
+            self._floor = 10.0 * float(miss)
+        return self._floor
 
     def __repr__(self):
         return f"TPSModel(n_gcps={len(self.src)})"
 
 
+#: GCPs whose src points are closer than this fraction of the GCPs' src extent while their
+#: dst points are not (relative to the dst extent) make a thin-plate spline bend to reach both:
+#: 1 cm apart with different targets put it 1,674 px off at the scene's centre.
+_TPS_NEAR = 1e-4
+
+
 def _fit_tps(src, dst):
-    _, first = np.unique(src, axis=0, return_index=True)
-    if len(first) < len(src):
-        repeated = sorted(set(range(len(src))) - set(first.tolist()))[:5]
-        raise GCPError(f"a 'tps' model needs distinct src points, but rows {repeated} repeat "
-                       "an earlier point (a spline cannot pass through two targets at one "
-                       "place); remove the duplicate GCPs")
+    """The spline through every GCP; exact duplicates skipped (as GDAL does), conflicting or
+    nearly coincident src points with different dst refused."""
+    _unique, first, inverse_index = np.unique(src, axis=0, return_index=True,
+                                              return_inverse=True)
+    inverse_index = np.ravel(inverse_index)
+    skipped = []
+    conflicts = []
+    for row in range(len(src)):
+        earlier = int(first[inverse_index[row]])
+        if earlier != row:
+            if np.array_equal(dst[row], dst[earlier]):
+                skipped.append(row)
+            else:
+                conflicts.append((earlier, row))
+    if conflicts:
+        raise GCPError(_(
+            "a 'tps' model needs one dst point per src point, but rows {pairs} have the same "
+            "src point and different dst points (a spline cannot pass through two targets at "
+            "one place); remove or correct one of each pair").format(
+                pairs=", ".join(f"{a} and {b}" for a, b in conflicts[:5])))
+    if skipped:
+        keep = np.setdiff1d(np.arange(len(src)), skipped)
+        src, dst = src[keep], dst[keep]
+    else:
+        keep = np.arange(len(src))
+    from scipy.spatial import cKDTree
+
+    src_extent = float(np.ptp(src, axis=0).max()) or 1.0
+    dst_extent = float(np.ptp(dst, axis=0).max()) or 1.0
+    pairs = cKDTree(src).query_pairs(_TPS_NEAR * src_extent, output_type="ndarray")
+    if len(pairs):
+        apart = np.hypot(*(dst[pairs[:, 0]] - dst[pairs[:, 1]]).T) > _TPS_NEAR * dst_extent
+        pairs = pairs[apart]
+    if len(pairs):
+        a, b = keep[pairs[0]]
+        raise GCPError(_(
+            "a 'tps' model cannot pass through GCPs {count} pair(s) of which are nearly at one "
+            "src point but go to different dst points (first: rows {a} and {b}, {distance:.3g} "
+            "apart in src, {gap:.3g} in dst; the spline would bend wildly between them); "
+            "remove or correct one of each pair (src points closer than {near:g} of the GCPs' "
+            "extent must also agree in dst)").format(
+                count=len(pairs), a=int(a), b=int(b),
+                distance=float(np.hypot(*(src[pairs[0, 0]] - src[pairs[0, 1]]))),
+                gap=float(np.hypot(*(dst[pairs[0, 0]] - dst[pairs[0, 1]]))), near=_TPS_NEAR))
     centred = (src - src.mean(axis=0)) / (np.abs(src - src.mean(axis=0)).max() or 1.0)
     if np.linalg.matrix_rank(np.column_stack([np.ones(len(src)), centred]), tol=1e-9) < 3:
         raise GCPError("a 'tps' model needs at least 3 GCPs that are not collinear (its affine "
                        "part is fixed by them); spread the GCPs over the image")
-    return TPSModel(src, dst)
+    return TPSModel(src, dst, skipped)
 
 
 # --- The registry: every kind once, and what is derived from it ----------------------------------
@@ -1187,8 +1434,8 @@ def n_parameters(kind, order=None, n_gcps=None):
 
 def _fit_inputs(src, dst, kind, order):
     """Checked (n, 2) arrays and the registry entry; enough GCPs for the kind."""
-    src = as_points(src, "src")
-    dst = as_points(dst, "dst")
+    src = _as_real_points(src, "src")
+    dst = _as_real_points(dst, "dst")
     entry = registered(kind, order, "fit_transform")
     if len(src) != len(dst):
         raise GCPError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} "
@@ -1244,7 +1491,12 @@ def fit_transform(src, dst, kind, order=None):
     GCPError
         Unknown kind; an order for a kind that has none (or none for a
         polynomial); fewer GCPs than ``min_gcps(kind, order)``; collinear
-        points for projective, TPS or polynomial; repeated points for TPS.
+        points for projective, TPS or polynomial (nearly collinear for a
+        polynomial); for TPS, src points repeated or closer than 1e-4 of the
+        GCPs' extent with different dst points (exact duplicates, same src and
+        same dst, are skipped as GDAL does and listed in ``model.skipped``).
+    TypeError
+        If an array is complex, bool or text, or the order is not a number.
 
     Examples
     --------

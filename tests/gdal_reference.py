@@ -16,7 +16,7 @@ import rasterio
 _RESAMPLING = {"nearest": "NearestNeighbour", "bilinear": "Bilinear", "cubic": "Cubic",
               "average": "Average"}
 _GDAL_TYPES = {"uint8": "Byte", "uint16": "UInt16", "int16": "Int16", "int32": "Int32",
-               "float32": "Float32", "float64": "Float64"}
+               "float32": "Float32", "float64": "Float64", "int64": "Int64", "uint64": "UInt64"}
 
 
 def _geotransform(transform):
@@ -33,7 +33,7 @@ def _write_source(folder, image):
 
 
 def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodata,
-              plain_kernels=False, scale=None, block=256):
+              plain_kernels=False, scale=None, block=256, src_nodata=None, options=None):
     """Warp ``image`` with GDAL; ``source_transformer_xml`` places the source on the map.
 
     ``nodata``: the destination nodata, or None for none (gdalwarp without
@@ -43,6 +43,8 @@ def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodat
     chunk's source window makes the scale look below 0.95).
     ``scale``: (xscale, yscale) to force as XSCALE and YSCALE instead.
     ``block``: the VRT's block size, GDAL's chunk of output.
+    ``src_nodata``: the source nodata (gdalwarp's ``-srcnodata``), or None for none.
+    ``options``: more warp options, a dict of name -> value (e.g. UNIFIED_SRC_NODATA).
     """
     dtype = _GDAL_TYPES[np.dtype(image.dtype).name]
     with tempfile.TemporaryDirectory() as folder:
@@ -53,8 +55,10 @@ def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodat
             f"{band_nodata}</VRTRasterBand>" for b in range(1, count + 1))
         dst_nodata = (f"<DstNoDataReal>{nodata}</DstNoDataReal><DstNoDataImag>0</DstNoDataImag>"
                       if nodata is not None else "")
-        mapping = "".join(f'<BandMapping src="{b}" dst="{b}">{dst_nodata}</BandMapping>'
-                          for b in range(1, count + 1))
+        src_nodata_xml = (f"<SrcNoDataReal>{src_nodata!r}</SrcNoDataReal>"
+                          f"<SrcNoDataImag>0</SrcNoDataImag>" if src_nodata is not None else "")
+        mapping = "".join(f'<BandMapping src="{b}" dst="{b}">{src_nodata_xml}{dst_nodata}'
+                          "</BandMapping>" for b in range(1, count + 1))
         init = "NO_DATA" if nodata is not None else "0"
         inverse = ~dst_transform
         if plain_kernels:
@@ -62,6 +66,8 @@ def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodat
         scale_options = (f'<Option name="XSCALE">{scale[0]!r}</Option>'
                          f'<Option name="YSCALE">{scale[1]!r}</Option>'
                          if scale is not None else "")
+        scale_options += "".join(f'<Option name="{key}">{value}</Option>'
+                                 for key, value in (options or {}).items())
         xml = f"""<VRTDataset rasterXSize="{shape[1]}" rasterYSize="{shape[0]}" \
 subClass="VRTWarpedDataset">
   <GeoTransform>{_geotransform(dst_transform)}</GeoTransform>

@@ -261,3 +261,13 @@ def test_a_projective_error_map_needs_the_dst_points():
     src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 2]], dtype=float)
     with pytest.raises(GCPError, match="pass dst"):
         accuracy.predicted_error_map(src, "projective", np.zeros(2), np.zeros(2))
+
+
+def test_refine_gcps_checks_its_numbers():
+    src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5]], dtype=float)
+    with pytest.raises(TypeError, match="tolerance must be a number"):
+        accuracy.refine_gcps(src, src / 2, 1, "1.0")
+    with pytest.raises(ValueError, match="tolerance must be"):
+        accuracy.refine_gcps(src, src / 2, 1, float("nan"))
+    with pytest.raises(TypeError, match="min_gcps"):
+        accuracy.refine_gcps(src, src / 2, 1, 1.0, min_gcps=True)

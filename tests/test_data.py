@@ -119,10 +119,90 @@ def test_save_round_trips_a_raster(tmp_path):
         assert np.array_equal(dataset.read(), ccd.array)
 
 
-@pytest.mark.parametrize("transform", [(1.0, 2.0), "EPSG:4326", (1, 2, 3, 4, 5, float("nan"))])
+@pytest.mark.parametrize("transform", [(1.0, 2.0), (1, 2, 3, 4, 5, float("nan")),
+                                       ("a", 1, 0, 2, 0, -1), tuple(range(9))])
 def test_save_refuses_a_transform_it_cannot_read(tmp_path, transform):
     with pytest.raises(ValueError, match="transform must be an affine.Affine or 6 finite numbers"):
         data.save(tmp_path / "x.tif", np.zeros((3, 4), np.uint8), transform=transform)
+    with pytest.raises(TypeError, match="transform must be an affine.Affine .* got str"):
+        data.save(tmp_path / "x.tif", np.zeros((3, 4), np.uint8), transform="EPSG:4326")
+    assert not (tmp_path / "x.tif").exists()
+
+
+def test_save_refuses_a_tuple_in_affine_order_and_names_from_gdal(tmp_path):
+    # issue 26: Affine's order (a, b, c, d, e, f) read as GDAL's wrote a pixel width of 0
+    import affine
+    import rasterio
+
+    affine_order = (20.0, 0.0, 500_000.0, 0.0, -20.0, 7_400_000.0)
+    array = np.arange(12, dtype=np.uint8).reshape(3, 4)
+    with pytest.raises(ValueError, match=r"pixel width 0 .*affine.Affine's order.*"
+                                         r"affine.Affine\(\*transform\).*Affine.from_gdal"):
+        data.save(tmp_path / "x.tif", array, transform=affine_order)
+    with pytest.raises(ValueError, match="pixels with no area"):
+        data.save(tmp_path / "x.tif", array, transform=affine.Affine(20, 0, 0, 0, 0, 0))
+    assert not (tmp_path / "x.tif").exists()
+    # the same grid as an Affine, and in GDAL's order: one file, pixel width 20
+    for transform in (affine.Affine(*affine_order), affine.Affine(*affine_order).to_gdal()):
+        with rasterio.open(data.save(tmp_path / "ok.tif", array, transform=transform)) as dataset:
+            assert dataset.transform == affine.Affine(*affine_order)
+            assert dataset.res == (20.0, 20.0)
+
+
+def test_save_refuses_settings_beside_a_raster(tmp_path):
+    # issue 26: transform= was ignored without a word when a Raster was given
+    import affine
+
+    ccd = data.load("cbers2b_rgb342")
+    for given in ({"transform": affine.Affine.identity()}, {"crs": "EPSG:31981"},
+                  {"nodata": 0}):
+        with pytest.raises(ValueError, match=f"{next(iter(given))} given with a Raster.*"
+                                             "dataclasses.replace"):
+            data.save(tmp_path / "x.tif", ccd, **given)
+    assert not (tmp_path / "x.tif").exists()
+
+
+def test_save_gives_clear_errors_for_a_crs_or_a_folder(tmp_path):
+    array = np.zeros((3, 4), np.uint8)
+    with pytest.raises(ValueError, match="crs 'EPSG:999999' is not a CRS that PROJ knows"):
+        data.save(tmp_path / "x.tif", array, crs="EPSG:999999")
+    with pytest.raises(ValueError, match=r"folder of file .* does not exist.*mkdir"):
+        data.save(tmp_path / "missing" / "x.tif", array)
+    with pytest.raises(TypeError, match="file must be a path"):
+        data.save(3, array)
+
+
+def test_save_refuses_to_write_over_the_shipped_data(tmp_path):
+    shipped = data.path("nat1")
+    before = shipped.read_bytes()
+    with pytest.raises(ValueError, match="inside rsgeo's data folder"):
+        data.save(shipped, np.zeros((3, 4), np.uint8))
+    with pytest.raises(ValueError, match="inside rsgeo's data folder"):
+        data.save(shipped.parent / "new.tif", np.zeros((3, 4), np.uint8))
+    assert shipped.read_bytes() == before and not (shipped.parent / "new.tif").exists()
+
+
+@pytest.mark.parametrize("dtype, written", [(np.float16, "float32"), (">i2", "int16"),
+                                            (">f8", "float64"), ("<u2", "uint16")])
+def test_save_writes_float16_and_big_endian_arrays_without_changing_a_value(tmp_path, dtype,
+                                                                           written):
+    import rasterio
+
+    array = (np.arange(12).reshape(3, 4) * 3 - 7 * (np.dtype(dtype).kind != "u")).astype(dtype)
+    array[0, 0] = 7 if np.dtype(dtype).kind == "u" else -2.5 if array.dtype.kind == "f" else -2
+    with rasterio.open(data.save(tmp_path / "x.tif", array)) as dataset:
+        back = dataset.read(1)
+    assert back.dtype == np.dtype(written)
+    np.testing.assert_array_equal(back, array.astype(np.float64))
+
+
+def test_save_does_not_load_numba(tmp_path):
+    code = ("import sys, numpy as np, rsgeo.data as d; "
+            f"d.save({str(tmp_path / 'a.tif')!r}, np.zeros((2, 2), np.uint8), crs=31983); "
+            "print('numba' in sys.modules)")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "False"
 
 
 def test_save_refuses_a_bands_last_rgb_array(tmp_path):

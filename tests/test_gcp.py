@@ -1,5 +1,7 @@
 """rsgeo.gcp against GDAL's GCP transformer, plus .points files and errors."""
 
+import os
+
 import numpy as np
 import pytest
 
@@ -30,7 +32,8 @@ def test_points_file_round_trip(tmp_path):
     np.testing.assert_array_equal(again.enabled, gcps.enabled)
     assert again.crs == gcps.crs
     header = path.read_text().splitlines()[1]
-    assert header == "mapX,mapY,sourceX,sourceY,enable,dX,dY,residual"
+    # QGIS's columns first (QgsGCPList::loadGcps reads only the first five), then ids and notes
+    assert header == "mapX,mapY,sourceX,sourceY,enable,dX,dY,residual,id,note"
 
 
 def test_reads_qgis_files_new_and_old(tmp_path):
@@ -86,3 +89,63 @@ def test_residual_arrows_point_down_the_image_for_positive_dy():
 def test_silent_wrong_answers_are_value_errors(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+# --- Issue 26: .points files ---
+
+GOOD = "mapX,mapY,sourceX,sourceY,enable\n500000,7400000,10,-20,1\n500100,7400000,20,-20,1\n"
+
+
+def test_byte_order_mark_and_flags(tmp_path):
+    path = tmp_path / "bom.points"
+    path.write_bytes(("\ufeff" + GOOD.replace(",1\n500100", ",FALSE\n500100")).encode())
+    gcps = gcp.read_points(path)
+    assert gcps.enabled.tolist() == [False, True]
+    path.write_text(GOOD.replace(",1\n500100", ",no\n500100").replace("20,1\n", "20,Yes\n"))
+    assert gcp.read_points(path).enabled.tolist() == [False, True]
+    path.write_text(GOOD.replace(",1\n500100", ",maybe\n500100"))
+    with pytest.raises(gcp.DataError, match="line 2: enable must be 1 or 0.*'maybe'"):
+        gcp.read_points(path)
+
+
+def test_header_only_binary_and_package_data(tmp_path):
+    path = tmp_path / "empty.points"
+    path.write_text("mapX,mapY,sourceX,sourceY,enable\n")
+    with pytest.raises(gcp.DataError, match="has a header but no points"):
+        gcp.read_points(path)
+    path.write_bytes(bytes(range(256)) * 4)
+    with pytest.raises(gcp.DataError, match="not a text .points file"):
+        gcp.read_points(path)
+    import rsgeo
+
+    gcps = gcp.GCPSet([[0, 0], [1, 0], [0, 1]], [[0, 0], [1, 0], [0, 1]])
+    target = os.path.join(os.path.dirname(rsgeo.__file__), "data", "mine.points")
+    with pytest.raises(gcp.DataError, match="data folder"):
+        gcp.write_points(target, gcps)
+    assert not os.path.exists(target)
+
+
+def test_multiline_wkt_ids_and_notes_round_trip(tmp_path):
+    from rasterio.crs import CRS
+
+    wkt = CRS.from_epsg(31983).to_wkt().replace(",", ",\n    ")      # multi-line WKT
+    assert "\n" in wkt
+    gcps = gcp.GCPSet([[500000, 7400000], [500100, 7400000], [500000, 7400100]],
+                      [[10, 20], [20, 20], [10, 10]], ids=["A", "B", "C"], crs=wkt,
+                      notes=["road, crossing", "", "field corner"], enabled=[True, False, True])
+    path = tmp_path / "wkt.points"
+    gcp.write_points(path, gcps)
+    again = gcp.read_points(path)
+    assert path.read_text().splitlines()[1].startswith("mapX,mapY,sourceX,sourceY,enable")
+    assert CRS.from_user_input(again.crs) == CRS.from_epsg(31983)
+    assert again.ids == ["A", "B", "C"] and again.notes == gcps.notes
+    assert again.enabled.tolist() == [True, False, True]
+
+
+def test_gcpset_copies_the_arrays():
+    map_xy = np.array([[0.0, 0], [100, 0], [0, 100]])
+    gcps = gcp.GCPSet(map_xy, map_xy / 10)
+    map_xy += 203
+    assert gcps.map_xy[0].tolist() == [0.0, 0.0]
+    with pytest.raises(TypeError, match="complex"):
+        gcp.GCPSet(map_xy.astype(complex), map_xy)

@@ -201,3 +201,100 @@ def test_georeference_accepts_the_other_model_kinds():
     # a similarity and an affine model of the same GCPs place the scene within a few pixels
     assert abs(helmert.transform.c - linear.transform.c) < 5 * 20.0
     assert abs(helmert.array.shape[-1] - linear.array.shape[-1]) < 5
+
+
+# -- issue 26: datum shifts between unlike CRSs, points outside a CRS's area of use ------------
+
+@pytest.mark.parametrize("src, dst, kinds", [
+    ("EPSG:4326", SIRGAS_UTM23S,
+     r"EPSG:4326 \(geographic, degree\).*EPSG:31983 \(projected, metre"),
+    (SIRGAS_UTM23S, "EPSG:4674", r"EPSG:31983 \(projected, metre\).*EPSG:4674 \(geographic"),
+    ("EPSG:2263", "EPSG:32618",
+     r"EPSG:2263 \(projected, US survey foot\).*EPSG:32618 \(projected, metre"),
+])
+def test_datum_shift_refuses_crss_of_different_kinds_or_units(src, dst, kinds):
+    # EPSG:4326 -> 31983 was a "shift" of 7,473 km: a projection, not a datum shift
+    with pytest.raises(ValueError, match="a datum shift needs two CRSs of the same kind and "
+                                         f"unit, got src_crs {kinds}.*transform_points"):
+        georef.datum_shift([[-45.0, -23.0]], src, dst)
+
+
+@pytest.mark.parametrize("dst, projection", [("EPSG:29192", r"\+proj=utm \+zone=22 \+south\)"),
+                                             ("EPSG:3857", r"\+proj=merc")])
+def test_datum_shift_refuses_two_projections(dst, projection):
+    # UTM 23S -> 22S or Web Mercator, both in metres: hundreds of km of "shift"
+    with pytest.raises(ValueError, match=r"src_crs EPSG:29193 and dst_crs .* are different "
+                                         rf"projections \(\+proj=utm \+zone=23 \+south and "
+                                         rf"{projection}.*transform_points"):
+        georef.datum_shift([[500000.0, 7400000.0]], SAD69_UTM23S, dst)
+
+
+def test_datum_shift_between_two_geographic_crss_is_proj_in_degrees():
+    lonlat = [[-54.3, -23.78], [-45.2, -23.3]]
+    dx, dy, distance = georef.datum_shift(lonlat, "EPSG:4618", "EPSG:4674")   # SAD69 -> SIRGAS
+    xs, ys = rasterio.warp.transform("EPSG:4618", "EPSG:4674", [-54.3, -45.2], [-23.78, -23.3])
+    np.testing.assert_array_equal(dx, np.array(xs) - [-54.3, -45.2])
+    np.testing.assert_array_equal(dy, np.array(ys) - [-23.78, -23.3])
+    assert np.all((distance > 1e-4) & (distance < 1e-3))     # tens of metres, in degrees
+
+
+def test_points_outside_a_crss_area_of_use_are_refused():
+    # lon/lat typed into two UTM CRSs "moved" 42.8 m; PROJ's area of use of EPSG:29193 is
+    # 48°W to 42°W, 33.5°S to 5.13°N (EPSG's, in the CRS's WKT2 usage)
+    typed = [[500000.0, 7400000.0], [-45.0, -23.0]]
+    message = (r"1 of 2 points are outside the area of use of EPSG:29193 \(longitude -48 to -42, "
+               r"latitude -33.5 to 5.13; first: point 1 \(-45, -23\) in EPSG:29193.*longitude "
+               r"and latitude typed into a projected CRS")
+    with pytest.raises(ValueError, match=message):
+        georef.datum_shift(typed, SAD69_UTM23S, SIRGAS_UTM23S)
+    with pytest.raises(ValueError, match=message):
+        georef.transform_points(typed, SAD69_UTM23S, SIRGAS_UTM23S)
+    # inside the source's area, outside the target's (UTM 23S is 48°W to 42°W)
+    with pytest.raises(ValueError, match="outside the area of use of EPSG:31983 .*point 0 "
+                                         r"\(-60, -20\) in EPSG:4326"):
+        georef.transform_points([[-60.0, -20.0]], "EPSG:4326", SIRGAS_UTM23S)
+    # check_area=False: what PROJ (rasterio, gdalwarp) gives, without a word
+    moved = georef.transform_points(typed, SAD69_UTM23S, SIRGAS_UTM23S, check_area=False)
+    xs, ys = rasterio.warp.transform(SAD69_UTM23S, SIRGAS_UTM23S, [500000.0, -45.0],
+                                     [7400000.0, -23.0])
+    np.testing.assert_array_equal(moved, np.column_stack([xs, ys]))
+    # a CRS read from a file (no usage in its WKT) is looked up by its EPSG code
+    nat1 = data.load("nat1")
+    with pytest.raises(ValueError, match="outside the area of use of EPSG:29193"):
+        georef.datum_shift([[-45.0, -23.0]], nat1.crs, SIRGAS_UTM23S)
+    # a CRS without an area of use (a PROJ string PROJ does not identify) is not checked
+    local = "+proj=tmerc +lon_0=-45.3 +lat_0=-23 +k=1 +x_0=1000 +y_0=1000 +ellps=GRS80"
+    assert np.isfinite(georef.transform_points([[-45.0, -23.0]], local, "EPSG:4326")).all()
+
+
+def test_datum_shift_inside_the_areas_is_unchanged():
+    gcps = data.load_gcps("cbers2b_ccd_hrc")
+    dx, dy, distance = georef.datum_shift(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
+    xs, ys = rasterio.warp.transform(SAD69_UTM21S, SIRGAS_UTM21S, gcps.map_xy[:, 0],
+                                     gcps.map_xy[:, 1])
+    np.testing.assert_array_equal(dx, np.array(xs) - gcps.map_xy[:, 0])
+    np.testing.assert_array_equal(distance, np.hypot(dx, dy))
+
+
+# -- issue 26: georeference's input and its output's size ---------------------------------------
+
+def test_georeference_given_a_bare_array_says_its_type_and_shape():
+    gcps = data.load_gcps("cbers2b_ccd_hrc")
+    array = data.load("cbers2b_rgb342").array
+    with pytest.raises(TypeError, match=r"raster_or_path must be an rsgeo.data.Raster or the "
+                                        r"path of a GeoTIFF, got ndarray of shape \(3, 351, 369\)"
+                                        r"; wrap an array as rsgeo.data.Raster") as error:
+        georef.georeference(array, gcps)
+    assert len(str(error.value)) < 250          # not the whole array
+    with pytest.raises(TypeError, match="got list"):
+        georef.georeference([[1, 2], [3, 4]], gcps)
+
+
+def test_georeference_refuses_an_output_too_big_before_allocating_it():
+    # resolution=0.01 on a 20 m image: about 706,865 x 736,902 cells x 3 bands, 1,455 GiB
+    raster, gcps = data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc")
+    with pytest.raises(ValueError, match=r"3 band\(s\) of uint8\) would take 14\d\d\.\d GiB.*"
+                                         "coarser resolution"):
+        georef.georeference(raster, gcps, resolution=0.01)
+    with pytest.raises(ValueError, match=r"GiB.*coarser resolution"):
+        georef.reproject(data.load("nat1"), SIRGAS_UTM23S, resolution=0.01)

@@ -419,3 +419,48 @@ def test_evolution_frame_spans_the_whole_run_from_the_first_generation():
     with pytest.raises(ValueError, match="at least one generation"):
         draw_evolution_frame(reference, adjustment, truth, [])
     plt.close(figure)
+
+
+def test_binary_coding_refuses_more_labels_than_8_bits_hold():
+    # issue 26: 256+ reference segments gave an OverflowError from NumPy
+    rng = np.random.default_rng(0)
+    adjustment = matching.Mesh(rng.uniform(0, 1000, (4, 2)), rng.uniform(1, 10, 4))
+    big = matching.Mesh(rng.uniform(0, 1000, (300, 2)), rng.uniform(1, 10, 300))
+    with pytest.raises(ValueError, match='use the integer coding \\(encoding="integer"\\)'):
+        matching.genetic_match(big, adjustment, seed=0, generations=2, population_size=10)
+    result = matching.genetic_match(big, adjustment, seed=0, generations=2, population_size=10,
+                                    encoding="integer")
+    assert result.solution.max() <= 300
+    # 255 labels still fit in 8 bits: the binary coding runs
+    most = matching.Mesh(rng.uniform(0, 1000, (255, 2)), rng.uniform(1, 10, 255))
+    result = matching.genetic_match(most, adjustment, seed=0, generations=2, population_size=10)
+    assert 0 <= result.solution.min() and result.solution.max() <= 255
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda mesh: matching.genetic_match([[0, 0], [1, 0], [0, 1]], mesh), "reference"),
+    (lambda mesh: matching.genetic_match(mesh, None), "adjustment"),
+    (lambda mesh: matching.fitness([1, 2, 3], mesh, "mesh"), "adjustment"),
+    (lambda mesh: matching.exhaustive_match({}, mesh), "reference"),
+    (lambda mesh: matching.optimum_match(mesh, 3), "adjustment"),
+    (lambda mesh: matching.qap_match(np.zeros((3, 2)), mesh), "reference"),
+    (lambda mesh: matching.matched_centroids([1, 2, 3], mesh, [1]), "adjustment"),
+    (lambda mesh: matching.group_spread([1, 2, 3], "mesh"), "adjustment"),
+])
+def test_what_is_not_a_mesh_is_a_type_error_naming_the_argument(call, name):
+    mesh = matching.Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
+    with pytest.raises(TypeError, match=f"{name} must be a rsgeo.matching.Mesh.*Mesh\\(centroids"):
+        call(mesh)
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    ({"seed": np.nan}, ValueError, "seed must be a finite number"),
+    ({"seed": 2.5}, ValueError, "seed must be a whole number"),
+    ({"population_size": np.nan}, ValueError, "population_size must be a finite number"),
+    ({"generations": True}, TypeError, "generations must be a number"),
+    ({"stall_generations": 0.5}, ValueError, "stall_generations must be a whole number"),
+])
+def test_genetic_match_counts_and_seed_are_whole_numbers(kwargs, error, message):
+    mesh = matching.Mesh([[0, 0], [100, 0], [0, 100]], [50, 80, 120])
+    with pytest.raises(error, match=message):
+        matching.genetic_match(mesh, mesh, **kwargs)

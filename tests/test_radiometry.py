@@ -224,3 +224,79 @@ def test_match_histograms_works_on_floats_and_refuses_nan():
         radiometry.match_histograms(np.where(image > 1, np.nan, image), reference)
     with pytest.raises(ValueError, match="integers or floats"):
         radiometry.match_histograms(image, np.array([["a"]]))
+
+
+def test_fit_gain_offset_refuses_complex_images():
+    # issue 26: complex input was silently made real
+    x = np.arange(100.0).reshape(10, 10)
+    with pytest.raises(TypeError, match="x_image must hold real numbers.*complex128"):
+        radiometry.fit_gain_offset(x + 1j, x)
+    with pytest.raises(TypeError, match="y_image must hold real numbers"):
+        radiometry.fit_gain_offset(x, (x + 1j).astype(np.complex64))
+
+
+def test_fit_gain_offset_refuses_what_cannot_be_regressed():
+    # issue 26: a constant image, no covariance or an overflowing spread gave gain NaN
+    x = np.arange(100.0).reshape(10, 10)
+    with pytest.raises(ValueError, match="x_image is constant.*cannot be regressed"):
+        radiometry.fit_gain_offset(np.full((10, 10), 7, np.uint8), x)
+    symmetric = np.tile(np.array([-1.0, 0.0, 1.0]), (3, 1))
+    for method in ("ols", "orthogonal", "rma"):
+        with pytest.raises(ValueError, match="do not vary together"):
+            radiometry.fit_gain_offset(symmetric, symmetric.T * 0 + symmetric ** 2, method=method)
+    with pytest.raises(ValueError, match="too large to regress"):
+        radiometry.fit_gain_offset(x * 1e300, x)
+
+
+def test_fit_gain_offset_on_64_bit_integers_matches_numpy_in_float64():
+    x = (np.arange(10000, dtype=np.uint64).reshape(100, 100) * 1000 + 2**40)
+    y = (x.astype(np.int64) * 3 - 5)
+    fit = radiometry.fit_gain_offset(x, y)
+    # the exact line, and NumPy's float64 fit agrees on the gain (its offset loses ~0.3 DN)
+    np.testing.assert_allclose([fit.gain, fit.offset], [3.0, -5.0], rtol=1e-12, atol=1e-3)
+    gain = np.polyfit(x.ravel().astype(np.float64), y.ravel().astype(np.float64), 1)[0]
+    np.testing.assert_allclose(fit.gain, gain, rtol=1e-12)
+    assert np.isfinite([fit.gain, fit.offset, fit.r]).all()
+
+
+def test_fit_gain_offset_refuses_smooth_on_a_band_stack():
+    # issue 26: smooth filtered across bands; a band stack is fitted band by band
+    stack = np.stack([np.arange(100.0).reshape(10, 10)] * 2)
+    with pytest.raises(ValueError, match="smooth filters one band.*\\(2, 10, 10\\)"):
+        radiometry.fit_gain_offset(stack, 2 * stack, smooth=3)
+    fit = radiometry.fit_gain_offset(stack, 2 * stack)           # without smooth: all pixels
+    assert round(fit.gain, 9) == 2.0
+
+
+# -- issue 26: 64-bit images -------------------------------------------------
+
+@pytest.mark.parametrize("dtype", ["int64", "uint64"])
+def test_apply_gain_offset_clips_64_bit_results_to_the_dtype_exactly(dtype):
+    # 2**53 * 4096 is beyond both maxima: it clipped in float64 to 2**63 (2**64), whose cast
+    # wrapped around to -2**63 (0)
+    info = np.iinfo(dtype)
+    image = np.array([2**53, 3, 0], dtype)
+    np.testing.assert_array_equal(radiometry.apply_gain_offset(image, 4096.0, 0.0),
+                                  np.array([info.max, 12288, 0], dtype))
+    low = radiometry.apply_gain_offset(image, -4096.0, 0.0)
+    assert low[0] == info.min and low.dtype == np.dtype(dtype)
+
+
+@pytest.mark.parametrize("value, dtype", [(2**62, "int64"), (2**53 + 1, "int64"),
+                                          (2**64 - 1, "uint64"), (-(2**53) - 1, "int64")])
+def test_apply_gain_offset_refuses_64_bit_values_float64_cannot_hold(value, dtype):
+    # 2**62 * 4 gave -2**63 and uint64's maximum gave 0; 2**53 + 1 lost its last bit
+    with pytest.raises(ValueError, match=r"beyond \+-2\*\*53"):
+        radiometry.apply_gain_offset(np.array([value, 1], dtype), 4.0, 0.0)
+
+
+@pytest.mark.parametrize("smooth, error, message", [
+    (True, TypeError, "smooth must be a number"),
+    (2.5, ValueError, "smooth must be a whole number"),
+    (np.nan, ValueError, "smooth must be a finite number"),
+    (4, ValueError, "odd positive integer"),
+])
+def test_fit_gain_offset_smooth_is_an_odd_whole_number(smooth, error, message):
+    x = np.arange(100.0).reshape(10, 10)
+    with pytest.raises(error, match=message):
+        radiometry.fit_gain_offset(x, 2 * x, smooth=smooth)

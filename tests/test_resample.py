@@ -762,3 +762,174 @@ def test_gdalwarp_widens_its_kernels_per_chunk_on_a_rotated_footprint(method):
     fixed = _default_gdalwarp(image, rotated, dst_transform, shape, method, 0, XSCALE="1",
                               YSCALE="1")
     assert np.count_nonzero(got != fixed) == 0
+
+
+# -- issue 26: 64-bit images, a source nodata, clear errors, big outputs ------
+
+from rsgeo._checks import as_affine, as_output_shape  # noqa: E402
+from rsgeo.errors import GridError, ImageError  # noqa: E402
+
+# a rotated (7°), enlarged (10 m to 4.1 m) output grid, warped with GDAL's exact transformer
+_ROTATED = (affine.Affine.translation(500_003.0, 7_399_997.0) @ affine.Affine.rotation(7)
+            @ affine.Affine.scale(4.1, -4.1))
+
+
+@pytest.mark.parametrize("dtype, low, high", [("int64", -2**53, 2**53), ("uint64", 0, 2**53),
+                                              ("int64", -5, 1000), ("uint64", 0, 1000)])
+@pytest.mark.parametrize("method", ["bilinear", "cubic"])
+def test_64_bit_step_edges_are_clamped_as_gdal_does(dtype, low, high, method):
+    # issue 26: uint64 cubic undershoots wrapped to 2**64 - 1 (no clamp at itemsize 8);
+    # GDAL 3.10.3 clamps to the dtype's range after floor(v + 0.5)
+    image = np.full((24, 24), low, dtype)
+    image[:, 12:] = high
+    image[5:9, 3:7] = high
+    for nodata in (None, 7):
+        expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), _ROTATED, (60, 60), method,
+                             nodata, plain_kernels=True)
+        got = warp(image, ~SOURCE_TRANSFORM, (60, 60), _ROTATED, method, nodata, scale=1)
+        np.testing.assert_array_equal(got, expected)
+    assert got.min() >= low if dtype == "uint64" else True
+
+
+def test_uint64_cubic_undershoot_is_zero_not_a_wrapped_maximum():
+    image = np.zeros((8, 8), np.uint64)
+    image[:, 4:] = 100
+    cols = np.linspace(0.0, 8.0, 33)[:-1]
+    out = interpolate(image, cols, np.full_like(cols, 4.0), "cubic", nodata=None)
+    signed = interpolate(image.astype(np.int64), cols, np.full_like(cols, 4.0), "cubic",
+                         nodata=None)
+    np.testing.assert_array_equal(out, np.clip(signed, 0, None).astype(np.uint64))
+
+
+@pytest.mark.parametrize("value", [2**53 + 1, -(2**53) - 1])
+@pytest.mark.parametrize("method", ["bilinear", "cubic", "average"])
+def test_64_bit_values_float64_cannot_hold_are_refused(value, method):
+    # float64 holds integers exactly only up to 2**53: 2**53 + 1 would come out as 2**53
+    # (GDAL 3.10.3 gives 2**53 without a word, even for nearest)
+    image = np.full((4, 4), value, np.int64)
+    with pytest.raises(ImageError, match=r"beyond \+-2\*\*53.*nearest"):
+        warp(image, affine.Affine.identity(), (4, 4), method=method)
+    if method != "average":
+        with pytest.raises(ImageError, match="float64"):
+            interpolate(image, [1.0], [1.0], method)
+
+
+def test_nearest_copies_64_bit_values_exactly():
+    image = np.full((4, 4), 2**53 + 1, np.int64)
+    assert interpolate(image, [1.5], [1.5], "nearest")[0] == 2**53 + 1
+    big = np.full((4, 4), 2**64 - 1, np.uint64)
+    assert warp(big, affine.Affine.identity(), (4, 4))[2, 2] == 2**64 - 1
+
+
+def _holed(dtype, bands, hole, seed):
+    rng = np.random.default_rng(seed)
+    image = rng.integers(1, 250, (bands, 24, 24)).astype(dtype)
+    image[rng.random(image.shape) < 0.15] = hole
+    return image if bands > 1 else image[0]
+
+
+@pytest.mark.parametrize("method", WARP_METHODS)
+@pytest.mark.parametrize("dtype, hole", [("uint8", 0), ("float32", 0.0), ("float32", np.nan)])
+@pytest.mark.parametrize("bands", [1, 2])
+def test_src_nodata_matches_gdal_srcnodata(method, dtype, hole, bands):
+    # GDAL 3.10.3, VRT warp with the exact transformer and <SrcNoDataReal>: one band's nodata
+    # pixels are invalid; bilinear renormalises over the valid ones, cubic falls back to that
+    # bilinear, average leaves them out, and a pixel invalid in every band is nodata
+    image = _holed(dtype, bands, hole, seed=bands)
+    for nodata in (255, None):
+        expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), _ROTATED, (60, 60), method,
+                             nodata, plain_kernels=method != "average", src_nodata=float(hole))
+        got = warp(image, ~SOURCE_TRANSFORM, (60, 60), _ROTATED, method, nodata,
+                   scale=1 if method != "average" else None, src_nodata=hole)
+        np.testing.assert_array_equal(got, expected)
+
+
+def test_src_nodata_stops_nan_spreading():
+    image = np.full((8, 8), 10.0, np.float32)
+    image[4, 4] = np.nan
+    cols, rows = np.meshgrid(np.arange(8) + 0.3, np.arange(8) + 0.3)
+    for method, spread in (("bilinear", 4), ("cubic", 16)):
+        plain = interpolate(image, cols, rows, method, nodata=-1.0)
+        assert np.isnan(plain).sum() == spread    # GDAL's behaviour without a source nodata
+        held = interpolate(image, cols, rows, method, nodata=-1.0, src_nodata=np.nan)
+        assert not np.isnan(held).any()
+        assert (held == -1.0).sum() == 1           # only the pixel inside the NaN one
+        np.testing.assert_array_equal(held[held != -1.0], 10.0)
+
+
+@pytest.mark.parametrize("src_nodata, message", [(300, "does not fit dtype uint8"),
+                                                 (np.nan, "does not fit dtype uint8")])
+def test_src_nodata_must_fit_the_dtype(src_nodata, message):
+    with pytest.raises(ImageError, match=message):
+        interpolate(np.zeros((4, 4), np.uint8), [1.0], [1.0], src_nodata=src_nodata)
+
+
+def test_src_nodata_with_widened_kernels_is_refused_with_the_fix():
+    with pytest.raises(ValueError, match="scale=1.*average"):
+        interpolate(np.ones((8, 8), np.uint8), [1.0], [1.0], "bilinear", scale=0.5,
+                    src_nodata=0)
+
+
+@pytest.mark.parametrize("strip_rows, error, message", [
+    (0, ValueError, r"strip_rows must be >= 1"), (-3, ValueError, r"strip_rows must be >= 1"),
+    (2.5, ValueError, "whole number"), ("8", TypeError, "must be a number")])
+def test_strip_rows_must_be_a_positive_integer(strip_rows, error, message):
+    with pytest.raises(error, match=message):
+        warp(np.ones((4, 4), np.uint8), lambda xy: xy, (4, 4), strip_rows=strip_rows)
+
+
+@pytest.mark.parametrize("mapping, message", [
+    (None, "callable model.*got NoneType"), (np.eye(3), "callable model.*got ndarray"),
+    ((1.0, 0.0, 0.0, 0.0, 1.0, 0.0), r"from_gdal")])
+def test_a_mapping_that_is_not_a_model_is_a_type_error(mapping, message):
+    with pytest.raises(TypeError, match=message):
+        warp(np.ones((4, 4), np.uint8), mapping, (4, 4))
+
+
+def test_transform_must_be_a_finite_affine():
+    image = np.ones((4, 4), np.uint8)
+    with pytest.raises(TypeError, match=r"transform must be an affine.Affine.*from_gdal"):
+        warp(image, lambda xy: xy, (4, 4), transform=(0.0, 1.0, 0.0, 4.0, 0.0, -1.0))
+    with pytest.raises(GridError, match="transform holds NaN"):
+        warp(image, lambda xy: xy, (4, 4), transform=affine.Affine(np.nan, 0, 0, 0, -1, 4))
+    with pytest.raises(GridError, match="mapping holds NaN"):
+        warp(image, affine.Affine(np.nan, 0, 0, 0, 1, 0), (4, 4))
+    assert as_affine(affine.Affine.identity()) == affine.Affine.identity()
+
+
+def test_an_output_too_big_for_memory_is_refused_before_allocating():
+    with pytest.raises(GridError, match=r"GiB.*coarser resolution.*window"):
+        warp(np.ones((4, 4), np.uint8), affine.Affine.identity(), (10**6, 10**6))
+    with pytest.raises(GridError, match=r"8.0 GiB, more than the 1.0 GiB"):
+        as_output_shape((2**15, 2**15), np.float32, bands=2, limit=2**30)
+    assert as_output_shape((2**15, 2**15), np.float32, limit=2**32) == (2**15, 2**15)
+
+
+@pytest.mark.parametrize("dtype", [np.float16, ">f4", ">u2"])
+def test_float16_and_big_endian_are_converted_once_not_per_strip(dtype, monkeypatch):
+    from rsgeo import resample
+
+    image = noise((20, 20), "float32" if np.dtype(dtype).kind == "f" else "uint16",
+                  seed=3).astype(dtype)
+    seen = []
+    original = resample._resample
+
+    def spy(bands, *args, **kwargs):
+        seen.append(bands.dtype)
+        return original(bands, *args, **kwargs)
+
+    monkeypatch.setattr(resample, "_resample", spy)
+    out = warp(image, lambda xy: xy + 0.25, (20, 20), method="bilinear", strip_rows=4)
+    assert len(seen) == 5 and all(d.isnative and d != np.float16 for d in seen)
+    assert out.dtype == np.dtype(dtype)
+    native = warp(image.astype(np.dtype(dtype).newbyteorder("=") if np.dtype(dtype) != np.float16
+                               else np.float32), lambda xy: xy + 0.25, (20, 20),
+                  method="bilinear")
+    np.testing.assert_array_equal(out, native.astype(dtype))
+
+
+@pytest.mark.parametrize("cols", [[1.0 + 1.0j], ["1.0"], [True]])
+def test_positions_that_are_not_real_numbers_are_a_type_error(cols):
+    # complex positions were silently made real (NumPy drops the imaginary part)
+    with pytest.raises(TypeError, match=r"cols must be real numbers"):
+        interpolate(np.ones((4, 4), np.uint8), cols, [1.0])

@@ -410,3 +410,74 @@ def test_olinda_terrain_is_shipped_with_its_stated_metadata():
     assert data.path("olinda_dem").name == "olinda_dem.tif"
     with pytest.raises(ValueError, match="terrain: olinda_dem, olinda_l7_b4"):
         data.load("olinda")
+
+
+# -- issue 26: transforms as rsgeo.data.save reads them, CRSs, output size, strips -------------
+
+def test_orthorectify_reads_a_gdal_tuple_and_refuses_one_in_affine_order(scene):
+    # an Affine-order tuple read as GDAL's put the DEM's heights 275 m off without a word
+    _, rpc, dem, dem_gt, image = scene
+    grid = affine.Affine(0.0002, 0, LON0 - 0.02, 0, -0.0002, LAT0 + 0.02)
+    reference = orthorectify(image, rpc, dem, dem_gt, grid, (200, 200), "bilinear")
+    by_tuples = orthorectify(image, rpc, dem, dem_gt.to_gdal(), grid.to_gdal(), (200, 200),
+                             "bilinear")
+    np.testing.assert_array_equal(by_tuples, reference)
+    with pytest.raises(ValueError, match=r"dem_transform .* has pixel width 0 .*affine.Affine\(\*"
+                                         r"dem_transform\).*Affine.from_gdal"):
+        orthorectify(image, rpc, dem, tuple(dem_gt)[:6], grid, (200, 200), "bilinear")
+    with pytest.raises(ValueError, match="dst_transform .* has pixel width 0"):
+        orthorectify(image, rpc, dem, dem_gt, tuple(grid)[:6], (200, 200), "bilinear")
+    with pytest.raises(TypeError, match="dst_transform must be an affine.Affine or 6 finite"):
+        orthorectify(image, rpc, dem, dem_gt, "EPSG:4326", (200, 200), "bilinear")
+    with pytest.raises(ValueError, match="dem_transform is None"):
+        dem_height(dem, None, LON0, LAT0)
+
+
+@pytest.mark.parametrize("argument", ["dst_crs", "dem_crs"])
+def test_orthorectify_names_an_unknown_crs(scene, argument):
+    _, rpc, dem, dem_gt, image = scene
+    grid = affine.Affine(0.0002, 0, LON0 - 0.02, 0, -0.0002, LAT0 + 0.02)
+    with pytest.raises(ValueError, match=f"{argument} 'EPSG:999999' is not a CRS that PROJ knows"):
+        orthorectify(image, rpc, dem, dem_gt, grid, (20, 20), **{argument: "EPSG:999999"})
+
+
+def test_orthorectify_refuses_an_output_too_big_before_allocating_it(scene):
+    _, rpc, dem, dem_gt, image = scene
+    grid = affine.Affine(1e-7, 0, LON0 - 0.02, 0, -1e-7, LAT0 + 0.02)
+    with pytest.raises(ValueError, match=r"dst_shape=\(400000, 400000\).*149\.0 GiB.*coarser"):
+        orthorectify(image, rpc, dem, dem_gt, grid, (400_000, 400_000), "nearest")
+
+
+@pytest.mark.parametrize("strip_rows", [1, 7, 64, 1000])
+def test_orthorectify_in_strips_is_the_same_image(scene, strip_rows):
+    _, rpc, dem, dem_gt, image = scene
+    grid = affine.Affine(0.0004, 0, LON0 - 0.03, 0, -0.0004, LAT0 + 0.03)
+    bands = np.stack([image, image[::-1]])
+    whole = orthorectify(bands, rpc, dem, dem_gt, grid, (150, 130), "cubic", nodata=None,
+                         strip_rows=10 ** 6)
+    assert whole.shape == (2, 150, 130)
+    np.testing.assert_array_equal(
+        orthorectify(bands, rpc, dem, dem_gt, grid, (150, 130), "cubic", nodata=None,
+                     strip_rows=strip_rows), whole)
+
+
+def test_orthorectify_strips_count_dem_problems_over_the_whole_grid(scene):
+    _, rpc, dem, dem_gt, image = scene
+    grid = affine.Affine(0.0002, 0, LON0 - 0.04, 0, -0.0002, LAT0 + 0.04)
+    messages = []
+    for strip_rows in (None, 50, 400):
+        with pytest.raises(ValueError, match=r"DEM does not cover \d+ of 160000 points") as error:
+            orthorectify(image, rpc, dem[:50], dem_gt, grid, (400, 400), "nearest",
+                         strip_rows=strip_rows)
+        messages.append(str(error.value))
+    holed = dem.copy()
+    holed[100, 61] = np.nan                     # under the grid's last strips only
+    for strip_rows in (50, 400):
+        with pytest.raises(ValueError, match="nodata holes .*row 100, col 61") as error:
+            orthorectify(image, rpc, holed, dem_gt, grid, (400, 400), "nearest",
+                         strip_rows=strip_rows)
+        messages.append(str(error.value))
+    assert len(set(messages[:3])) == 1 and messages[3] == messages[4]
+    for bad, kind in [(0, ValueError), (2.5, ValueError), ("10", TypeError)]:
+        with pytest.raises(kind, match="strip_rows"):
+            orthorectify(image, rpc, dem, dem_gt, grid, (40, 40), strip_rows=bad)

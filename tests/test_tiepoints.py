@@ -286,3 +286,80 @@ def test_offsets_against_reference_recover_a_shifted_geotransform():
 def test_measure_shifts_refuses_what_it_cannot_measure(call, message):
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def _smooth_scene(sigma, size=200, seed=0):
+    from scipy.ndimage import gaussian_filter
+
+    image = gaussian_filter(np.random.default_rng(seed).normal(0, 1, (size, size)), sigma)
+    return 100 + 50 * image / image.std()
+
+
+@pytest.mark.parametrize("sigma", [2, 4, 8])
+def test_smooth_windows_are_rejected_not_called_reliable_while_pixels_off(sigma):
+    # issue 26: plain phase correlation on a smooth scene is pulled towards zero shift by the
+    # windows' cut edges; 16 of 16 windows were "reliable" while up to 2.3 px off
+    image, shift = _smooth_scene(sigma), np.array([2.3, -1.7])
+    moving = resample.warp(image, affine.Affine.translation(*-shift), image.shape,
+                           method="cubic", nodata=0)
+    valid = np.zeros(image.shape, bool)
+    valid[10:-10, 10:-10] = True
+    with pytest.raises(ValueError, match=r"\d+ smooth\).*use taper=True"):
+        tiepoints.correlation_tiepoints(image, moving, 40, 48, valid=valid)
+    # without the filter the old silent answer: windows called reliable, pixels off
+    gcps = tiepoints.correlation_tiepoints(image, moving, 40, 48, valid=valid, max_edge_share=1)
+    offsets = gcps.image_xy[gcps.enabled] - gcps.map_xy[gcps.enabled]
+    assert np.abs(offsets - shift).max() > 1.0
+    # the tapered correlation measures them
+    gcps = tiepoints.correlation_tiepoints(image, moving, 40, 48, valid=valid, taper=True)
+    offsets = gcps.image_xy[gcps.enabled] - gcps.map_xy[gcps.enabled]
+    assert gcps.enabled.sum() == 9 and np.abs(offsets - shift).max() < (0.3 if sigma == 8 else 0.1)
+
+
+def test_edge_share_separates_textured_from_smooth_windows(ccd_hrc):
+    rng = np.random.default_rng(0)
+    assert tiepoints.edge_share(rng.normal(size=(64, 64))) < 0.05
+    assert tiepoints.edge_share(_smooth_scene(8, 64)) > 0.9
+    ccd, blocks, _, _, _ = ccd_hrc
+    band = ccd.array[0][:64, :64].astype(float)
+    assert tiepoints.edge_share(band, band) < tiepoints.MAX_EDGE_SHARE
+    with pytest.raises(ValueError, match="window must be a finite 2-D array"):
+        tiepoints.edge_share(np.ones(5))
+    with pytest.raises(ValueError, match="same shape"):
+        tiepoints.edge_share(np.ones((8, 8)), np.ones((8, 9)))
+
+
+@pytest.mark.parametrize("kwargs, error, message", [
+    ({"iterations": 2.5}, ValueError, "iterations must be a whole number, got 2.5"),
+    ({"iterations": True}, TypeError, "iterations must be a number"),
+    ({"min_contrast": np.nan}, ValueError, "min_contrast must be a finite number"),
+    ({"min_contrast": "2"}, TypeError, "min_contrast must be a number"),
+    ({"min_reliability": np.nan}, ValueError, "min_reliability must be a finite number"),
+    ({"tolerance": -1}, ValueError, "tolerance must be"),
+    ({"max_edge_share": 1.5}, ValueError, "max_edge_share must be"),
+    ({"window": 1}, ValueError, "window must be >= 8"),
+    ({"window": 7.5}, ValueError, "window must be a whole number"),
+])
+def test_correlation_tiepoints_checks_its_numbers(kwargs, error, message):
+    image = _smooth_scene(0.5, 64)
+    arguments = {"spacing": 16, "window": 16, **kwargs}
+    with pytest.raises(error, match=message):
+        tiepoints.correlation_tiepoints(image, image, **arguments)
+
+
+def test_measure_shifts_refuses_a_window_below_the_minimum():
+    image = _smooth_scene(0.5, 64)
+    with pytest.raises(ValueError, match=f"window must be >= {tiepoints.MIN_WINDOW}"):
+        tiepoints.measure_shifts(image, image, step=4, window=1)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"seed": 2.5}, "seed must be a whole number"),
+    ({"spacing": np.nan}, "spacing must be a finite number"),
+    ({"upsample": 0}, "upsample must be"),
+])
+def test_correlation_tiepoints_seed_spacing_and_upsample_are_whole_numbers(kwargs, message):
+    image = _smooth_scene(0.5, 64)
+    arguments = {"spacing": 16, "window": 16, **kwargs}
+    with pytest.raises(ValueError, match=message):
+        tiepoints.correlation_tiepoints(image, image, **arguments)

@@ -238,7 +238,7 @@ def test_duplicate_points_for_tps_are_a_value_error():
     image_xy, map_xy = cbers()
     map_xy = np.vstack([map_xy, map_xy[3]])
     image_xy = np.vstack([image_xy, image_xy[3] + 2])
-    with pytest.raises(ValueError, match="repeat"):
+    with pytest.raises(ValueError, match="same src point and different dst"):
         transforms.fit_transform(map_xy, image_xy, "tps")
 
 
@@ -429,7 +429,8 @@ def test_every_polynomial_inverse_round_trips(order, seed, u, v, bend):
                               7_400_000 - 20_000 * (r + bend * c * r)])
     model = transforms.fit_polynomial(map_xy, image_xy, order)
     inside = np.array([[500_000 + 20_000 * u, 7_400_000 - 20_000 * v]])
-    np.testing.assert_allclose(model.inverse()(model(inside)), inside, rtol=0, atol=1e-5)
+    # Newton stops within 1e-9 of the dst extent (1,000 px): 1e-6 px, up to ~2e-5 m at 20 m/px
+    np.testing.assert_allclose(model.inverse()(model(inside)), inside, rtol=0, atol=1e-4)
     image_point = model(inside)
     np.testing.assert_allclose(model(model.inverse()(image_point)), image_point, rtol=0, atol=1e-6)
 
@@ -496,3 +497,211 @@ def test_polynomial_and_spline_share_one_newton_inverse():
         np.testing.assert_allclose(model(model.inverse()(inside)), inside, atol=1e-8)
     with pytest.raises(ModelError, match="no inverse"):
         transforms.fit_polynomial(src, folded, 2).inverse()([[-1.0, 0.0]])
+
+
+# --- Issue 26: bad and extreme GCPs ---
+
+
+def test_tps_skips_exact_duplicates_as_gdal_does():
+    # GDAL's GDALCreateTPSTransformerInt skips a GCP that repeats an earlier one exactly
+    image_xy, map_xy = cbers()
+    twice_map, twice_image = np.vstack([map_xy, map_xy[[3, 5]]]), np.vstack([image_xy,
+                                                                             image_xy[[3, 5]]])
+    model = transforms.fit_transform(twice_map, twice_image, "tps")
+    assert model.skipped == (len(map_xy), len(map_xy) + 1)
+    points = inside_points(map_xy)
+    expected = gdal_tps_map_to_image(twice_image, twice_map, points)
+    assert np.abs(model(points) - expected).max() < 1e-6
+
+
+def test_tps_refuses_near_duplicates_with_different_targets():
+    image_xy, map_xy = cbers()
+    map_xy = np.vstack([map_xy, map_xy[4] + [0.01, 0]])          # 1 cm from GCP 4
+    image_xy = np.vstack([image_xy, image_xy[4] + [30, 0]])       # but 30 px elsewhere
+    with pytest.raises(transforms.GCPError, match=r"rows 4 and 14"):
+        transforms.fit_transform(map_xy, image_xy, "tps")
+
+
+def test_tps_inverse_converges_on_two_thousand_noisy_gcps():
+    # GDAL autotest transformer.py, test_transformer_tps_precision (2,115 GCPs), made synthetic:
+    # the spline through 2,000 noisy GCPs cannot be evaluated to 1e-10 of its extent
+    rng = np.random.default_rng(0)
+    image_xy = rng.uniform(0, 5000, (2000, 2))
+    c, r = image_xy[:, 0] / 5000, image_xy[:, 1] / 5000
+    map_xy = (np.column_stack([500_000 + 100_000 * c + 2000 * r * r,
+                               7_400_000 - 100_000 * r + 500 * c])
+              + rng.normal(0, 200, (2000, 2)))
+    model = transforms.fit_transform(image_xy, map_xy, "tps")
+    assert model.evaluation_floor() > 1e-10 * np.ptp(map_xy, axis=0).max() / 2
+    back = model.inverse()(map_xy)
+    np.testing.assert_allclose(back, image_xy, atol=1e-6)
+
+
+@pytest.mark.parametrize("src, dst, order", [
+    (np.ones((6, 2), complex), np.ones((6, 2)), 1),
+    (np.ones((6, 2), bool), np.ones((6, 2)), 1),
+    (np.random.default_rng(0).random((6, 2)), np.random.default_rng(1).random((6, 2)), True),
+    (np.random.default_rng(0).random((6, 2)), np.random.default_rng(1).random((6, 2)), "1"),
+])
+def test_complex_bool_and_boolean_orders_are_type_errors(src, dst, order):
+    with pytest.raises(TypeError):
+        transforms.fit_polynomial(src, dst, order)
+    with pytest.raises(TypeError):
+        transforms.fit_transform(src, dst, "polynomial", order)
+    with pytest.raises(TypeError):
+        transforms.min_gcps(True)
+
+
+def test_nearly_collinear_gcps_are_refused():
+    rng = np.random.default_rng(0)
+    x = np.linspace(0, 1000, 12)
+    src = np.column_stack([x, 2 * x + rng.normal(0, 0.01, 12)])     # 1e-5 off one line
+    for order in (1, 2):
+        with pytest.raises(transforms.GCPError, match=r"\(nearly\) collinear"):
+            transforms.fit_polynomial(src, rng.random((12, 2)), order)
+    # an elongated but genuine strip (QGIS's test GCPs, 1.5 km x 62 km) is accepted
+    transforms.fit_polynomial(QGIS_MAP_10, QGIS_PIXEL_10, 3)
+
+
+def test_models_copy_their_gcps():
+    image_xy, map_xy = cbers()
+    src, dst = map_xy.copy(), image_xy.copy()
+    for kind, order in (("polynomial", 2), ("helmert", None), ("tps", None)):
+        model = transforms.fit_transform(src, dst, kind, order)
+        before = model.reverse()(dst[:3]) if hasattr(model, "reverse") else model.inverse()(
+            dst[:3])
+        src += 100.0
+        dst *= 1.5
+        after = model.reverse()(image_xy[:3]) if hasattr(model, "reverse") else \
+            model.inverse()(image_xy[:3])
+        np.testing.assert_allclose(after, before)
+        np.testing.assert_array_equal(model.src, map_xy)
+        src, dst = map_xy.copy(), image_xy.copy()
+
+
+def test_outside_gcps_rates_extrapolation_and_inverse_refuses_far_preimages():
+    from rsgeo.errors import ModelError
+
+    rng = np.random.default_rng(3)
+    src = rng.uniform(0, 500, (20, 2)) + [500_000, 7_400_000]      # clustered in 500 m
+    c, r = (src[:, 0] - 500_000) / 20, (7_400_000 - src[:, 1]) / 20
+    dst = np.column_stack([c + 1e-3 * c * c, r - 1e-3 * c * r])
+    model = transforms.fit_polynomial(src, dst, 2)
+    assert model.outside_gcps(src).max() == 0
+    far = np.array([[600_000.0, 7_400_000.0]])                      # 100 km away
+    assert model.outside_gcps(far)[0] > 100
+    with pytest.raises(ModelError, match="far outside its GCPs"):
+        model.inverse()(model(far))
+    inside = src.mean(axis=0, keepdims=True)
+    np.testing.assert_allclose(model.inverse()(model(inside)), inside, atol=1e-6)
+    # order 1 has one preimage everywhere: nothing refused
+    linear = transforms.fit_polynomial(src, dst, 1)
+    np.testing.assert_allclose(linear.inverse()(linear(far)), far, atol=1e-4)
+
+
+# --- QGIS tests/src/analysis/testqgsgcptransformer.cpp, ported ---
+# QGIS's updateParametersFromGcps(source=pixel, destination=map): transform() maps pixel ->
+# map; transform(..., true) is the exact inverse for linear, Helmert and projective and GDAL's
+# separately fitted reverse for the polynomials and the spline (rsgeo's .reverse()).
+# QGSCOMPARENEAR(value, expected, 1): within 1.
+
+QGIS_PIXEL_4 = np.array([(288, 1126), (2352, 716), (2067, 2398), (1102, 2209)], float)
+QGIS_MAP_4 = np.array([(321210, 130280), (322698, 129979), (322501, 192061),
+                       (321803, 192198)], float)
+QGIS_PIXEL_6 = np.vstack([QGIS_PIXEL_4[:3], [(2100, 1500)], QGIS_PIXEL_4[3:], [(300, 1550)]])
+QGIS_MAP_6 = np.vstack([QGIS_MAP_4[:3], [(322550, 149979)], QGIS_MAP_4[3:], [(321310, 145979)]])
+QGIS_PIXEL_10 = np.vstack([QGIS_PIXEL_6, [(300, 850), (1000, 830), (900, 1450), (700, 1550)]])
+QGIS_MAP_10 = np.vstack([QGIS_MAP_6, [(321310, 131979), (321703, 131579), (321603, 145979),
+                                      (321003, 146179)]])
+QGIS_POINTS = np.array([(288, 1000), (2352, 1150), (2067, 2500), (1102, 2300)], float)
+QGIS_IDENTITY_10 = np.array([(321210, 130280), (322698, 129979), (322501, 192061),
+                             (322501, 152061), (321803, 192198), (321210, 152061),
+                             (322010, 182061), (322010, 132061), (321050, 162061),
+                             (321050, 172061)], float)
+QGIS_IDENTITY_POINTS = np.array([(321212, 123003), (322702, 140444), (322496, 194554),
+                                 (321800, 186514)], float)
+
+QGIS_CASES = {
+    # name: (kind, order, pixel GCPs, map GCPs, expected forward, expected back)
+    "testLinear": ("linear", None, QGIS_PIXEL_4, QGIS_MAP_4,
+                   [(321212, 135047), (322702, 141437), (322496, 198947), (321800, 190427)],
+                   QGIS_POINTS),
+    "testHelmert": ("helmert", None, QGIS_PIXEL_4, QGIS_MAP_4,
+                    [(302325, 145676), (340495, 155540), (330540, 179867), (313138, 172822)],
+                    QGIS_POINTS),
+    "testPolyOrder1": ("polynomial", 1, QGIS_PIXEL_4, QGIS_MAP_4,
+                       [(321209, 128732), (322700, 146403), (322501, 202230), (321803, 188448)],
+                       [(288, 1017), (2352, 1164), (2067, 2474), (1102, 2279)]),
+    "testPolyOrder2": ("polynomial", 2, QGIS_PIXEL_6, QGIS_MAP_6,
+                       [(321175, 126837), (322763, 135026), (322489, 198409), (321803, 197778)],
+                       [(265, 1025), (2336, 936), (2097, 2445), (1123, 2225)]),
+    "testPolyOrder3": ("polynomial", 3, QGIS_PIXEL_10, QGIS_MAP_10,
+                       [(321202, 129364), (318595, 101765), (321488, 185766), (320879, 189391)],
+                       [(237, 1319), (138412, 15444), (-1237, 5315), (-4000, 2621)]),
+    "testTPSReports": ("tps", None, QGIS_PIXEL_4, QGIS_MAP_4,
+                       [(321209, 124248), (322700, 146609), (322501, 196160), (321803, 195999)],
+                       [(290, 680), (2347, 1636), (2068, 2273), (1103, 2177)]),
+    "testProjective": ("projective", None, QGIS_PIXEL_4, QGIS_MAP_4,
+                       [(321256, 123764), (322687, 142908), (322494, 197069), (321781, 198051)],
+                       QGIS_POINTS),
+}
+
+
+def _qgis_back(model, points):
+    """QGIS's transform(..., true): the reverse fit (GDAL) or the exact inverse (matrices)."""
+    return (model.reverse() if hasattr(model, "reverse") else model.inverse())(points)
+
+
+@pytest.mark.parametrize("name", list(QGIS_CASES))
+def test_qgis_gcp_transformer(name):
+    kind, order, pixel, map_xy, forward, back = QGIS_CASES[name]
+    model = transforms.fit_transform(pixel, map_xy, kind, order)
+    there = model(QGIS_POINTS)
+    np.testing.assert_allclose(there, forward, rtol=0, atol=1)
+    np.testing.assert_allclose(_qgis_back(model, there), back, rtol=0, atol=1)
+
+
+@pytest.mark.parametrize("kind, order, n", [
+    ("linear", None, 4), ("helmert", None, 4), ("polynomial", 1, 4), ("polynomial", 2, 6),
+    ("polynomial", 3, 10), ("tps", None, 4), ("projective", None, 4)])
+def test_qgis_gcp_transformer_exact(kind, order, n):
+    # QGIS's test...Exact cases: the identity, fitted on map points, reproduces any point
+    gcps = QGIS_IDENTITY_10[:n] if n != 4 else QGIS_MAP_4
+    model = transforms.fit_transform(gcps, gcps, kind, order)
+    there = model(QGIS_IDENTITY_POINTS)
+    np.testing.assert_allclose(there, QGIS_IDENTITY_POINTS, rtol=0, atol=1)
+    np.testing.assert_allclose(_qgis_back(model, there), QGIS_IDENTITY_POINTS, rtol=0, atol=1)
+
+
+QGIS_RASTER_Y = {
+    # QGIS's ...RasterYAxis cases for the GDAL-based models and the projective one: the pixel
+    # GCPs are given with y = -line and flipped before fitting, but the points transformed are
+    # passed as given (y = -line, i.e. outside the image): a QGIS convention, reproduced here by
+    # fitting on (x, -y) and evaluating at (x, y).
+    "testPolyOrder1RasterYAxis": ("polynomial", 1, [(288, -716), (2352, -1126), (2067, -2398),
+                                                    (1102, -2209)], QGIS_MAP_4,
+                                  [(321201, 63463), (322686, 24965), (322474, -31687),
+                                   (321780, -13813)]),
+    "testPolyOrder2RasterYAxis": ("polynomial", 2, QGIS_PIXEL_6 * [1, -1], QGIS_MAP_6,
+                                  [(320404, 131061), (322022, 176342), (320831, 273376),
+                                   (319958, 243375)]),
+    "testTPSRasterYAxis": ("tps", None, [(288, -716), (2352, -1126), (2067, -2398),
+                                         (1102, -2209)], QGIS_MAP_4,
+                           [(321202, 63505), (322686, 24959), (322474, -31676),
+                            (321780, -13787)]),
+    "testProjectiveRasterYAxis": ("projective", None, [(288, -716), (2352, -1126),
+                                                       (2067, -2398), (1102, -2209)], QGIS_MAP_4,
+                                  [(321203, 63965), (322681, 25366), (322467, -30635),
+                                   (321777, -12647)]),
+}
+QGIS_RASTER_Y_POINTS = np.array([(288, -716), (2352, -1126), (2067, -2398), (1102, -2209)],
+                                float)
+
+
+@pytest.mark.parametrize("name", list(QGIS_RASTER_Y))
+def test_qgis_gcp_transformer_raster_y_axis(name):
+    kind, order, pixel, map_xy, forward = QGIS_RASTER_Y[name]
+    model = transforms.fit_transform(np.asarray(pixel, float) * [1, -1], map_xy, kind, order)
+    points = QGIS_RASTER_Y_POINTS if "Order2" not in name else QGIS_RASTER_Y_POINTS[
+        [0, 1, 2, 3]]
+    np.testing.assert_allclose(model(points), forward, rtol=0, atol=1)

@@ -26,7 +26,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .._checks import as_bands_first, as_image
+from .._checks import as_bands_first, as_crs, as_image
+from .._i18n import _
 from ..errors import DataError, GridError
 from ..gcp import read_points
 
@@ -335,16 +336,22 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
     Parameters
     ----------
     file : str or path-like
-        The GeoTIFF to write (DEFLATE-compressed).
+        The GeoTIFF to write (DEFLATE-compressed), in a folder that exists
+        and outside rsgeo's own data folder (the shipped files).
     raster_or_array : Raster or ndarray
-        A :class:`Raster` (its own transform, CRS and nodata are used), or an
+        A :class:`Raster` (its own transform, CRS and nodata are written:
+        ``transform``, ``crs`` and ``nodata`` must then be left out), or an
         array: (rows, cols) for one band, (bands, rows, cols) for several.
+        Float16 is written as float32 (GeoTIFF through GDAL 3.10 has no
+        float16) and a big-endian array in the machine's byte order, both
+        without changing a value.
     transform : affine.Affine or sequence of 6 numbers, optional
         Pixel corner (col, row) → map (x, y). A 6-tuple is read in GDAL's
         order (x0, pixel width, row rotation, y0, column rotation, pixel
-        height), as ``dataset.GetGeoTransform()`` and ``gdalinfo`` give it.
+        height), as ``dataset.GetGeoTransform()`` and ``gdalinfo`` give it;
+        one in affine.Affine's order (pixel width first) is refused.
     crs : str, int or rasterio CRS, optional
-        E.g. ``"EPSG:29191"``.
+        E.g. ``"EPSG:29191"`` (see :func:`rsgeo.georef.as_crs`).
     nodata : number, optional
 
     Returns
@@ -356,8 +363,11 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
     ------
     ValueError
         If the array is not 2-D or 3-D bands first (a (rows, cols, 3) RGB
-        array is refused with the fix), or ``transform`` is neither an Affine
-        nor 6 numbers.
+        array is refused with the fix); ``transform`` is neither an Affine
+        nor 6 numbers in GDAL's order, or its pixels have no area; ``crs`` is
+        not a CRS PROJ knows; a Raster comes with ``transform``, ``crs`` or
+        ``nodata``; the folder does not exist; or ``file`` is inside rsgeo's
+        data folder.
 
     Examples
     --------
@@ -372,32 +382,127 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
     import rasterio
 
     if isinstance(raster_or_array, Raster):
+        given = [name for name, value in (("transform", transform), ("crs", crs),
+                                          ("nodata", nodata)) if value is not None]
+        if given:
+            raise DataError(_(
+                "{given} given with a Raster, which carries its own; save the Raster alone, or "
+                "dataclasses.replace(raster, {first}=...) to change it, or save raster.array "
+                "with transform=, crs=, nodata=").format(given=", ".join(given), first=given[0]))
         array, transform, crs, nodata = (raster_or_array.array, raster_or_array.transform,
                                          raster_or_array.crs, raster_or_array.nodata)
     else:
         array = np.asarray(raster_or_array)
     array = as_bands_first(as_image(array, "array"), "array")
-    transform = _as_affine(transform)
+    if array.dtype == np.float16:
+        array = array.astype(np.float32)                  # exact: every float16 is a float32
+    if not array.dtype.isnative:
+        array = array.astype(array.dtype.newbyteorder("="))
+    transform = _as_affine(transform, "transform")
+    crs = None if crs is None else as_crs(crs, "crs")
+    target = _writable(file)
     bands = array if array.ndim == 3 else array[np.newaxis]
-    with rasterio.open(file, "w", driver="GTiff", width=bands.shape[2], height=bands.shape[1],
+    with rasterio.open(target, "w", driver="GTiff", width=bands.shape[2], height=bands.shape[1],
                        count=bands.shape[0], dtype=bands.dtype, transform=transform, crs=crs,
                        nodata=nodata, compress="deflate") as dataset:
         dataset.write(bands)
     return Path(file)
 
 
-def _as_affine(transform):
-    """An affine.Affine from an Affine, a GDAL-ordered 6-tuple or None (identity)."""
+def _writable(file):
+    """``file`` as a Path in an existing folder outside the shipped data; else a DataError."""
+    import os
+
+    if not isinstance(file, (str, os.PathLike)):
+        raise TypeError(_("file must be a path (str or pathlib.Path), got {kind}").format(
+            kind=type(file).__name__))
+    target = Path(file)
+    folder = target.resolve().parent
+    if folder == _FOLDER.resolve() or _FOLDER.resolve() in folder.parents:
+        raise DataError(_(
+            "file {file!r} is inside rsgeo's data folder ({folder}), whose files are the "
+            "shipped datasets; write to a folder of your own (e.g. tempfile.mkdtemp())").format(
+                file=str(file), folder=str(_FOLDER)))
+    if not folder.is_dir():
+        raise DataError(_(
+            "the folder of file {file!r} does not exist ({folder}); create it first, e.g. "
+            "Path({folder_text!r}).mkdir(parents=True)").format(
+                file=str(file), folder=str(folder), folder_text=str(target.parent)))
+    return target
+
+
+def _as_affine(transform, name="transform"):
+    """An affine.Affine from an Affine, a GDAL-ordered 6-sequence or None (None).
+
+    The one reading of a geotransform in rsgeo (:func:`save`,
+    :func:`rsgeo.terrain.orthorectify`): a 6-sequence is GDAL's order
+    (x0, pixel width, row rotation, y0, column rotation, pixel height), as
+    ``GetGeoTransform()`` and ``gdalinfo`` give it. One whose pixel width or
+    height is 0 while the other is not is affine.Affine's order (a, b, c, d,
+    e, f) read the wrong way (``Affine(20, 0, x0, 0, -20, y0)`` read as GDAL's
+    has pixel width 0): refused, as is any transform whose pixels have no area.
+
+    Parameters
+    ----------
+    transform : affine.Affine, sequence of 6 numbers or None
+    name : str
+        The argument's name, for the error message.
+
+    Returns
+    -------
+    affine.Affine or None
+
+    Raises
+    ------
+    TypeError
+        If ``transform`` is not an Affine, a sequence of numbers, or None.
+    ValueError
+        If it is not 6 finite numbers, is evidently in Affine's order, or
+        its pixels have no area.
+
+    Examples
+    --------
+    >>> _as_affine((500000.0, 20.0, 0.0, 7400000.0, 0.0, -20.0))
+    Affine(20.0, 0.0, 500000.0,
+           0.0, -20.0, 7400000.0)
+    """
     import affine
 
-    if transform is None or isinstance(transform, affine.Affine):
-        return transform
-    try:
-        values = [float(v) for v in transform]
-    except (TypeError, ValueError):
-        values = None
-    if values is None or len(values) != 6 or not np.isfinite(values).all():
-        raise GridError(f"transform must be an affine.Affine or 6 finite numbers in GDAL's "
-                        f"order (x0, pixel width, row rotation, y0, column rotation, "
-                        f"pixel height), got {transform!r}")
-    return affine.Affine.from_gdal(*values)
+    if transform is None:
+        return None
+    if isinstance(transform, affine.Affine):
+        gt = transform.to_gdal()
+    else:
+        if isinstance(transform, (str, bytes)) or not hasattr(transform, "__len__"):
+            raise TypeError(_(
+                "{name} must be an affine.Affine or 6 finite numbers in GDAL's order (x0, "
+                "pixel width, row rotation, y0, column rotation, pixel height), got "
+                "{kind}").format(
+                    name=name, kind=type(transform).__name__))
+        try:
+            gt = tuple(float(v) for v in transform)
+        except (TypeError, ValueError):
+            gt = None
+        if gt is None or len(gt) != 6 or not np.isfinite(gt).all():
+            raise GridError(_(
+                "{name} must be an affine.Affine or 6 finite numbers in GDAL's order (x0, "
+                "pixel width, row rotation, y0, column rotation, pixel height), got "
+                "{value!r}").format(name=name, value=transform))
+        if (gt[1] == 0) != (gt[5] == 0):
+            raise GridError(_(
+                "{name} {value!r} read in GDAL's order (x0, pixel width, row rotation, y0, "
+                "column rotation, pixel height) has pixel width {width:g} and pixel height "
+                "{height:g}: it looks like affine.Affine's order (a, b, c, d, e, f); give "
+                "affine.Affine(*{name}) for that order, or affine.Affine.from_gdal(*{name}) "
+                "for GDAL's").format(name=name, value=tuple(transform), width=gt[1],
+                                  height=gt[5]))
+    if not np.isfinite(gt).all():
+        raise GridError(_("{name} must be an affine.Affine or 6 finite numbers, got "
+                          "{value!r}").format(name=name, value=transform))
+    determinant = gt[1] * gt[5] - gt[2] * gt[4]
+    if determinant == 0:
+        raise GridError(_(
+            "{name} {value!r} (GDAL's order) has pixels with no area (pixel width x height "
+            "- rotations = 0); a geotransform needs a nonzero pixel width and height").format(
+                name=name, value=tuple(gt)))
+    return transform if isinstance(transform, affine.Affine) else affine.Affine.from_gdal(*gt)
