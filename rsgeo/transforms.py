@@ -826,7 +826,7 @@ def fit_polynomial(src, dst, order):
         the order is not 1-3, there are fewer GCPs than ``min_gcps(order)``,
         or the GCPs are collinear or repeated so that the system has no unique
         solution, or nearly collinear (the normalised design's condition
-        number above 1000**order, :data:`_MAX_SPREAD_RATIO`).
+        number above 1000**order, ``_MAX_SPREAD_RATIO``).
     TypeError
         If an array is complex, bool or text, or the order is not a number
         (True, "2").
