@@ -634,6 +634,32 @@ def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
 
 
 @njit(cache=True, inline="always")
+def _bilinear_window(col, row):
+    """(left, top, ratio_x, ratio_y) of the 2 x 2 window around (col, row), as GDAL computes it.
+
+    The pixel centres are at half-integers, so the window starts at floor(col - 0.5),
+    floor(row - 0.5); ratio_x and ratio_y are the weights of its left column and top row.
+    """
+    left_f = np.floor(col - 0.5)
+    top_f = np.floor(row - 0.5)
+    return int(left_f), int(top_f), 1.5 - (col - left_f), 1.5 - (row - top_f)
+
+
+@njit(cache=True, inline="always")
+def _masked_bilinear_window(col, row):
+    """``_bilinear_window`` as GDAL's masked kernels take it: a window hanging off the left
+    (top) edge by one column (row) starts at 0 with ratio 1."""
+    left, top, ratio_x, ratio_y = _bilinear_window(col, row)
+    if left == -1:
+        left = 0
+        ratio_x = 1.0
+    if top == -1:
+        top = 0
+        ratio_y = 1.0
+    return left, top, ratio_x, ratio_y
+
+
+@njit(cache=True, inline="always")
 def _bilinear_at(bands, band, col, row):
     """Bilinear value at (col, row): GDAL's GWKBilinearResampleNoMasks4SampleT.
 
@@ -647,11 +673,7 @@ def _bilinear_at(bands, band, col, row):
     left).
     """
     height, width = bands.shape[1], bands.shape[2]
-    left_f = np.floor(col - 0.5)
-    top_f = np.floor(row - 0.5)
-    ratio_x = 1.5 - (col - left_f)
-    ratio_y = 1.5 - (row - top_f)
-    left, top = int(left_f), int(top_f)
+    left, top, ratio_x, ratio_y = _bilinear_window(col, row)
     if left >= 0 and left < width - 1 and top >= 0 and top < height - 1:
         other_x = 1.0 - ratio_x
         upper = (_pixel(bands, band, top, left) * ratio_x
@@ -697,17 +719,7 @@ def _bilinear_masked_at(bands, band, col, row):
     an enlargement round differently in the two orders.
     """
     height, width = bands.shape[1], bands.shape[2]
-    left_f = np.floor(col - 0.5)
-    top_f = np.floor(row - 0.5)
-    ratio_x = 1.5 - (col - left_f)
-    ratio_y = 1.5 - (row - top_f)
-    left, top = int(left_f), int(top_f)
-    if left == -1:
-        left = 0
-        ratio_x = 1.0
-    if top == -1:
-        top = 0
-        ratio_y = 1.0
+    left, top, ratio_x, ratio_y = _masked_bilinear_window(col, row)
     accumulator = 0.0
     divisor = 0.0
     if top < height:
@@ -745,17 +757,7 @@ def _bilinear_valid_at(bands, valid, band, col, row):
     up to less than 0.00001, GDAL's threshold.
     """
     height, width = bands.shape[1], bands.shape[2]
-    left_f = np.floor(col - 0.5)
-    top_f = np.floor(row - 0.5)
-    ratio_x = 1.5 - (col - left_f)
-    ratio_y = 1.5 - (row - top_f)
-    left, top = int(left_f), int(top_f)
-    if left == -1:
-        left = 0
-        ratio_x = 1.0
-    if top == -1:
-        top = 0
-        ratio_y = 1.0
+    left, top, ratio_x, ratio_y = _masked_bilinear_window(col, row)
     accumulator = 0.0
     divisor = 0.0
     if top < height:
