@@ -88,7 +88,6 @@ ALLOWED: dict[str, list[str]] = {
         "≈ 0.2–0.5 pixel",                                 # Townshend et al.'s targets
         "Decreto 89.817/1984",                             # the decree's number
         "90 %",                                            # the PEC's definition
-        "1.0 mm and the EP 0.6 mm",                        # class C in the decree
     ],
 }
 
