@@ -35,9 +35,19 @@ def as_points(points, name="points"):
 
     Raises
     ------
+    TypeError
+        If the array holds complex numbers, booleans or text.
     rsgeo.errors.GCPError
         If the array is not (n, 2) or holds NaN or infinite values.
     """
+    try:
+        kind = np.asarray(points).dtype.kind
+    except (TypeError, ValueError):
+        kind = "O"                      # ragged or odd input: the conversion below says why
+    if kind in "cbUS":                  # NumPy would drop an imaginary part or read True as 1
+        what = {"c": "complex", "b": "bool", "U": "text", "S": "text"}[kind]
+        raise TypeError(_("{name} must hold real numbers (map or image coordinates), got a "
+                          "{what} array").format(name=name, what=what))
     try:
         array = np.asarray(points, dtype=np.float64)
     except (TypeError, ValueError) as error:

@@ -16,10 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ._checks import as_points
 from ._i18n import _
 from .accuracy import _as_flags, residuals
 from .errors import CRSError, DataError, GCPError
-from .transforms import _as_real_points, fit_transform, registered
+from .transforms import fit_transform, registered
 
 __all__ = ["GCPSet", "read_points", "write_points"]
 
@@ -74,8 +75,8 @@ class GCPSet:  # numpydoc ignore=PR02
 
     def __post_init__(self):
         # copies: editing the caller's arrays afterwards must not move these GCPs
-        self.map_xy = np.array(_as_real_points(self.map_xy, "map_xy"))
-        self.image_xy = np.array(_as_real_points(self.image_xy, "image_xy"))
+        self.map_xy = np.array(as_points(self.map_xy, "map_xy"))
+        self.image_xy = np.array(as_points(self.image_xy, "image_xy"))
         n = len(self.map_xy)
         if len(self.image_xy) != n:
             raise GCPError(f"map_xy and image_xy must hold the same GCPs, got {n} and "

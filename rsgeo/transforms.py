@@ -201,20 +201,6 @@ def _same_points(src, dst):
     return src, dst
 
 
-def _as_real_points(points, name):
-    """``points`` as :func:`as_points` does, refusing complex, bool and text arrays (TypeError):
-    NumPy would silently drop an imaginary part or read True as 1."""
-    try:
-        kind = np.asarray(points).dtype.kind
-    except (TypeError, ValueError):
-        kind = "O"                      # ragged or odd input: as_points says what is wrong
-    if kind in "cbUS":
-        what = {"c": "complex", "b": "bool", "U": "text", "S": "text"}[kind]
-        raise TypeError(_("{name} must hold real numbers (map or image coordinates), got a "
-                          "{what} array").format(name=name, what=what))
-    return as_points(points, name)
-
-
 def _residual_vectors(model, src, dst):
     """model(src) and |model(src) - dst|, with the inputs checked."""
     src, dst = _same_points(src, dst)
@@ -838,8 +824,8 @@ def fit_polynomial(src, dst, order):
     >>> model([[5.0, 5.0]]).round(6)
     array([[11., 11.]])
     """
-    src = _as_real_points(src, "src")
-    dst = _as_real_points(dst, "dst")
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
     order = _check_order(order)
     if len(src) != len(dst):
         raise GCPError(_("src and dst must hold the same GCPs, got {n_src} and {n_dst} points")
@@ -1434,8 +1420,8 @@ def n_parameters(kind, order=None, n_gcps=None):
 
 def _fit_inputs(src, dst, kind, order):
     """Checked (n, 2) arrays and the registry entry; enough GCPs for the kind."""
-    src = _as_real_points(src, "src")
-    dst = _as_real_points(dst, "dst")
+    src = as_points(src, "src")
+    dst = as_points(dst, "dst")
     entry = registered(kind, order, "fit_transform")
     if len(src) != len(dst):
         raise GCPError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} "
