@@ -12,6 +12,9 @@ coordinate reference systems, datums and heights, ``ModelError`` for a model tha
 evaluated or inverted where asked, ``DataError`` for shipped data and files that cannot be read.
 Anything else is a plain :class:`RsgeoError`.
 
+A result that rsgeo computes but does not trust comes with a warning, not an error:
+:class:`ExtrapolationWarning` when a model is used far from the GCPs that control it.
+
 Examples
 --------
 >>> from rsgeo import errors
@@ -25,7 +28,7 @@ GCPError order 2 needs at least 6 GCPs, got 4
 """
 
 __all__ = ["RsgeoError", "GCPError", "ImageError", "GridError", "CRSError", "ModelError",
-           "DataError"]
+           "DataError", "ExtrapolationWarning"]
 
 
 class RsgeoError(ValueError):
@@ -54,3 +57,8 @@ class ModelError(RsgeoError):
 
 class DataError(RsgeoError):
     """A shipped data set that does not exist, or a file that cannot be read as expected."""
+
+
+class ExtrapolationWarning(UserWarning):
+    """A model used beyond its GCPs, where its error is not controlled (a polynomial of degree
+    2 or 3, or a projective model, grows fast with the distance from them)."""

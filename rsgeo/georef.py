@@ -17,6 +17,7 @@ True
 """
 
 import re
+import warnings
 
 import numpy as np
 
@@ -24,7 +25,7 @@ from . import transforms as _transforms
 from ._checks import as_crs, as_output_shape, as_points, check_choice
 from ._i18n import _
 from .data import Raster
-from .errors import CRSError, DataError, GCPError
+from .errors import CRSError, DataError, ExtrapolationWarning, GCPError
 from .gcp import GCPSet
 
 __all__ = ["as_crs", "transform_points", "datum_shift", "geocentric_translation",
@@ -34,6 +35,30 @@ __all__ = ["as_crs", "transform_points", "datum_shift", "geocentric_translation"
 SAD69_TO_SIRGAS2000 = (-67.35, 3.88, -38.22)
 
 _METHODS = ("nearest", "bilinear", "cubic")
+
+
+# No position on Earth has a coordinate 25 times the Earth's circumference (1e9 m) or 25 turns
+# (9,000°) from its CRS's origin; PROJ wraps longitudes by a loop whose time grows with the value
+# (a point at x = 1e18 m in EPSG:3857 takes minutes), so larger coordinates never reach PROJ.
+_FARTHEST_METRES = 1e9
+_FARTHEST_RADIANS = 50 * np.pi
+
+
+def _refuse_far_coordinates(points, crs):
+    """Refuse (n, 2) finite points with a coordinate no position on Earth has in ``crs``."""
+    kind, unit, factor = _kind_and_unit(crs)
+    farthest = _FARTHEST_RADIANS if kind == "geographic" else _FARTHEST_METRES
+    limit = farthest / factor if np.isfinite(factor) and factor > 0 else _FARTHEST_METRES
+    far = (np.abs(points) > limit).any(axis=1)
+    if far.any():
+        first = int(np.flatnonzero(far)[0])
+        raise CRSError(_(
+            "{count} of {n} points have a coordinate that no position on Earth has in {crs} "
+            "(first: point {first} ({x:.6g}, {y:.6g}); its coordinates stay within ±{limit:.6g} "
+            "{unit}, 25 times around the Earth): PROJ is not asked, it can take minutes on such "
+            "values; give points in the CRS's own coordinates and units").format(
+                count=int(far.sum()), n=len(points), crs=_crs_name(crs), first=first,
+                x=points[first, 0], y=points[first, 1], limit=limit, unit=unit))
 
 
 def _area_of_use(crs):
@@ -99,6 +124,7 @@ def _lon_lat(points, crs):
     """Longitude, latitude (EPSG:4326) of points in ``crs``; NaN where PROJ cannot say."""
     from rasterio.warp import transform
 
+    _refuse_far_coordinates(points, crs)
     try:
         with np.errstate(all="ignore"):
             return tuple(np.asarray(v, dtype=np.float64)
@@ -150,6 +176,7 @@ def _transform(points, src, dst):
 
     if src == dst:
         return points.copy()
+    _refuse_far_coordinates(points, src)
     try:
         xs, ys = transform(src, dst, points[:, 0], points[:, 1])
     except Exception as error:        # GDAL's CPLE_AppDefinedError "Reprojection failed"
@@ -193,6 +220,8 @@ def transform_points(points, src_crs, dst_crs, check_area=True):
     ------
     ValueError
         For a CRS that PROJ does not know, points that are not (n, 2) finite,
+        a coordinate no position on Earth has (beyond 1e9 m, or 9,000° in a
+        geographic CRS: refused whatever ``check_area``, before PROJ sees it),
         or (``check_area``) points outside a CRS's area of use.
 
     Examples
@@ -481,6 +510,72 @@ def _then_transform(pixel_to_map, src_crs, dst_crs):
     return lambda points: _transform(as_points(pixel_to_map(points), "points"), src_crs, dst_crs)
 
 
+# How far the output may reach beyond the GCPs' hull, in GCP extents (transforms.outside_hull),
+# before georeference warns, and before it refuses
+_REACH_WARNING = 0.1
+_REACH_LIMIT = 1.0
+
+
+def _edge_points(shape, per_side=21):
+    """(col, row) points along the four edges of an image of ``shape``, at pixel corners."""
+    height, width = shape
+    ratio = np.linspace(0.0, 1.0, per_side)
+    cols = np.concatenate([ratio * width, ratio * width, np.zeros(per_side),
+                           np.full(per_side, float(width))])
+    rows = np.concatenate([np.zeros(per_side), np.full(per_side, float(height)),
+                           ratio * height, ratio * height])
+    return np.column_stack([cols, rows])
+
+
+def _check_extrapolation(model, reverse, image_shape):
+    """Warn or refuse when the image's edges land far beyond the GCPs of an exploding model.
+
+    A polynomial of degree 2 or 3, or a projective model, is controlled by its GCPs
+    only inside them: beyond, it grows like a power of the distance (degree 3 on GCPs
+    clustered in 500 m of a 10 km scene: 0.14 px RMS on the GCPs, thousands of pixels off at the
+    corners, an output of 450 m pixels with 100 valid cells). The output grid is the
+    footprint of the image's edges taken to the map by ``reverse``; its reach is measured
+    by ``model.outside_gcps``. Order 1, linear, Helmert and TPS (affine outside its GCPs)
+    extrapolate linearly and are not checked.
+    """
+    kind = model.kind                       # the fitted kind, also for kind=2 (a polynomial)
+    if kind == "polynomial" and model.order >= 2:
+        what = _("a polynomial of degree {order}").format(order=model.order)
+        remedy = _("use order=1, which extrapolates linearly")
+    elif kind == "projective":
+        what = _("a projective model")
+        remedy = _("use kind='polynomial' with order=1")
+    else:
+        return
+    edges = _edge_points(image_shape)
+    footprint = np.asarray(reverse(edges), dtype=np.float64)
+    reach = np.full(len(edges), np.inf)
+    finite = np.isfinite(footprint).all(axis=1)
+    if finite.any():
+        reach[finite] = model.outside_gcps(footprint[finite])
+    farthest = int(np.argmax(reach))
+    if reach[farthest] <= _REACH_WARNING:
+        return
+    gcps_extent = float(np.ptp(model.src, axis=0).max())
+    where = _(
+        "the output grid reaches {reach:.3g} GCP extents ({distance:.6g} map units) beyond the "
+        "GCPs' hull (image point (col, row) {edge} lands at map {point})").format(
+            reach=reach[farthest], distance=reach[farthest] * gcps_extent,
+            edge=edges[farthest].round(1).tolist(),
+            point=footprint[farthest].round(1).tolist())
+    if reach[farthest] > _REACH_LIMIT:
+        raise GCPError(_(
+            "{where}: {what} explodes outside its GCPs, so the output's size, pixel size "
+            "and most of its cells would come from extrapolation, not from the GCPs; add GCPs "
+            "near the image's edges and corners, or {remedy}").format(
+                where=where, what=what, remedy=remedy))
+    warnings.warn(_(
+        "{where}: {what} is not controlled by its GCPs there and its error grows fast with "
+        "the distance (see rsgeo.accuracy.predicted_error_map); add GCPs near the image's edges "
+        "and corners, or {remedy}").format(where=where, what=what, remedy=remedy),
+        ExtrapolationWarning, stacklevel=3)
+
+
 def _fit(gcps, kind, order):
     """Map -> image model of the enabled GCPs."""
     if kind == "polynomial":
@@ -529,7 +624,20 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     ValueError
         Too few or collinear GCPs, a GCP set without a CRS when ``dst_crs`` is
         given, a CRS PROJ does not know, a resolution that is not positive, or
-        an unknown method.
+        an unknown method. ``GCPError`` when a polynomial of order 2 or 3 or a
+        projective model puts the image's edges more than one GCP extent (the
+        larger side of the GCPs' bounding box) beyond the GCPs' convex hull
+        (:meth:`rsgeo.transforms.GeometricModel.outside_gcps`): such a model
+        explodes outside its GCPs, and the output grid would be its
+        extrapolation.
+
+    Warns
+    -----
+    UserWarning
+        When such a model puts the image's edges more than 0.1 GCP extent
+        beyond the GCPs' hull: the corrected image's edges are extrapolated.
+        Order 1, linear, Helmert and TPS models extrapolate linearly and are
+        not checked.
 
     Examples
     --------
@@ -547,6 +655,7 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     raster = _as_raster(raster_or_path)
     model = _fit(gcps, kind, order)
     reverse = (model.reverse() if hasattr(model, "reverse") else model.inverse())
+    _check_extrapolation(model, reverse, raster.array.shape[-2:])
     pixel_to_map = reverse
     src_crs = None if gcps.crs is None else as_crs(gcps.crs, "gcps.crs")
     mapping = model

@@ -596,8 +596,10 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     ValueError
         If an image is not 2-D, holds NaN, the window is smaller than
         :data:`MIN_WINDOW` or larger than the reference, ``iterations`` is not a
-        whole number from 1, ``min_contrast``, ``min_reliability`` or
-        ``tolerance`` is not a finite number (NaN would disable a filter), the
+        whole number from 1, ``spacing``, ``upsample`` or ``seed`` is not a
+        whole number (a bool is not one: ``TypeError``) in its range,
+        ``min_contrast``, ``min_reliability`` or ``tolerance`` is not a finite
+        number from 0 (NaN would disable a filter), the
         first estimate puts the moving image nowhere on the
         reference grid (no overlap), or fewer reliable tie points remain
         than the model needs (the message counts each rejection reason).
@@ -614,12 +616,14 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     iterations = as_integer(iterations, "iterations", 1, None, _("a number of passes"))
     spacing = as_integer(spacing, "spacing", 1, None, _("a whole number of pixels"))
     seed = as_integer(seed, "seed", 0, None, _("the seed of the RANSAC outlier test"))
+    upsample = as_integer(upsample, "upsample", 1, None, _("1 / the sub-pixel precision"))
     window = as_integer(window, "window", MIN_WINDOW, None,
                         _("a correlation window needs at least {n} × {n} pixels").format(
                             n=MIN_WINDOW))
     min_contrast = as_number(min_contrast, "min_contrast", 0, None,
                              _("a standard deviation in DN; 0 keeps every window"))
-    min_reliability = as_number(min_reliability, "min_reliability", None, None)
+    min_reliability = as_number(min_reliability, "min_reliability", 0, None,
+                                _("a peak height in standard deviations; 0 keeps every window"))
     tolerance = as_number(tolerance, "tolerance", 0, None, _("an outlier threshold in pixels"))
     max_edge_share = as_number(max_edge_share, "max_edge_share", 0, 1,
                                _("a share of the window's frequencies"))

@@ -1,5 +1,6 @@
 """CRSs, datum shifts and a complete georeferencing run, checked against GDAL/PROJ."""
 
+import contextlib
 from xml.sax.saxutils import escape
 
 import affine
@@ -11,6 +12,7 @@ from rasterio.warp import calculate_default_transform
 
 from rsgeo import data, georef, radiometry
 from rsgeo.gcp import GCPSet
+from rsgeo.errors import ExtrapolationWarning
 
 from gdal_reference import affine_source, gcp_source, gdal_warp
 
@@ -91,6 +93,13 @@ def test_gcpset_refuses_to_mix_crss():
     assert len(gcps.to_crs(SIRGAS_UTM21S).combine(gcps.to_crs(31981))) == 28
 
 
+def extrapolation_warning(order):
+    """The shipped GCPs leave the scene's corners outside their hull: degree 2 and 3 warn."""
+    if order == 1:
+        return contextlib.nullcontext()
+    return pytest.warns(ExtrapolationWarning, match=r"GCP extents \(.*\) beyond the GCPs' hull")
+
+
 @pytest.mark.parametrize("order", [1, 2, 3])
 def test_output_grid_is_gdals_suggestion(order):
     raster, gcps = data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc")
@@ -99,7 +108,8 @@ def test_output_grid_is_gdals_suggestion(order):
               for (c, r), (x, y) in zip(gcps.image_xy, gcps.map_xy)]
     transform, cols, rows = calculate_default_transform(
         gcps.crs, gcps.crs, width, height, gcps=points, MAX_GCP_ORDER=order)
-    out = georef.georeference(raster, gcps, order=order)
+    with extrapolation_warning(order):
+        out = georef.georeference(raster, gcps, order=order)
     assert out.array.shape[-2:] == (rows, cols)
     np.testing.assert_allclose(tuple(out.transform)[:6], tuple(transform)[:6], rtol=0, atol=1e-6)
 
@@ -109,8 +119,9 @@ def test_output_grid_is_gdals_suggestion(order):
                                                     (2, "cubic", SIRGAS_UTM21S)])
 def test_georeference_saved_geotiff_equals_gdalwarp(tmp_path, order, method, dst_crs):
     raster, gcps = data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc")
-    out = georef.georeference(raster, gcps, order=order, resolution=20.0, method=method,
-                              nodata=0, dst_crs=dst_crs)
+    with extrapolation_warning(order):
+        out = georef.georeference(raster, gcps, order=order, resolution=20.0, method=method,
+                                  nodata=0, dst_crs=dst_crs)
     written = data.save(tmp_path / "corrected.tif", out)
     with rasterio.open(written) as dataset:
         back = dataset.read()
@@ -298,3 +309,131 @@ def test_georeference_refuses_an_output_too_big_before_allocating_it():
         georef.georeference(raster, gcps, resolution=0.01)
     with pytest.raises(ValueError, match=r"GiB.*coarser resolution"):
         georef.reproject(data.load("nat1"), SIRGAS_UTM23S, resolution=0.01)
+
+
+# -- issue 26: a polynomial of degree 2 or 3 extrapolated far beyond its GCPs -------------------
+
+SCENE_ORIGIN = (500000.0, 7400000.0)
+
+
+def scene_and_gcps(cols, rows, seed=0):
+    """A 10 km scene (500 x 500 pixels of 20 m) and GCPs at (cols, rows), map to 3 m."""
+    rng = np.random.default_rng(seed)
+    x0, y0 = SCENE_ORIGIN
+    image = rng.integers(1, 255, (500, 500), dtype=np.uint8)
+    raster = data.Raster(image, affine.Affine(20, 0, x0, 0, -20, y0), georef.as_crs(31983),
+                         None, "", "scene")
+    map_xy = np.column_stack([x0 + 20 * cols, y0 - 20 * rows]) + rng.normal(0, 3, (len(cols), 2))
+    return raster, GCPSet(map_xy, np.column_stack([cols, rows]), crs="EPSG:31983")
+
+
+@pytest.fixture(scope="module")
+def clustered():
+    # the issue's case: 15 GCPs in a 500 m patch (25 x 25 pixels) of a 10 km scene
+    rng = np.random.default_rng(0)
+    return scene_and_gcps(rng.uniform(240, 265, 15), rng.uniform(240, 265, 15))
+
+
+@pytest.mark.parametrize("kind, order, what", [
+    ("polynomial", 3, "a polynomial of degree 3"), ("polynomial", 2, "a polynomial of degree 2"),
+    ("projective", None, "a projective model"),
+    (3, None, "a polynomial of degree 3")])          # the order given as the kind
+def test_georeference_refuses_a_model_extrapolated_far_beyond_clustered_gcps(clustered, kind,
+                                                                             order, what):
+    # degree 3 fitted the GCPs to 0.14 px and gave a 592 x 491 grid of 446 m pixels with 100
+    # valid cells, without a word
+    raster, gcps = clustered
+    assert gcps.fit(3).rms(gcps.map_xy, gcps.image_xy) < 0.5
+    message = (r"the output grid reaches [\d.]+ GCP extents \([\d.e+]+ map units\) beyond the "
+               rf"GCPs' hull \(image point \(col, row\) .* lands at map .*\): {what} explodes "
+               r"outside its GCPs.*add GCPs near the image's edges and corners, or use")
+    with pytest.raises(ValueError, match=message):
+        georef.georeference(raster, gcps, kind=kind, order=order)
+    with pytest.raises(ValueError, match="explodes outside its GCPs"):   # before any PROJ step
+        georef.georeference(raster, gcps, kind=kind, order=order, dst_crs="EPSG:29193")
+
+
+@pytest.mark.parametrize("kind", ["polynomial", "linear", "helmert", "tps"])
+def test_models_that_extrapolate_linearly_are_not_checked(clustered, recwarn, kind):
+    # order 1, linear, Helmert and TPS (affine outside its GCPs) keep the scene's 20 m pixels
+    raster, gcps = clustered
+    out = georef.georeference(raster, gcps, kind=kind, order=1 if kind == "polynomial" else None)
+    assert abs(out.transform.a - 20.0) < 1.0 and (out.array != 0).mean() > 0.9
+    assert not [w for w in recwarn if "GCP extents" in str(w.message)]
+
+
+def test_degree_3_on_gcps_spread_to_the_corners_is_neither_warned_nor_refused(recwarn):
+    grid = np.linspace(0, 500, 5)
+    cols, rows = (a.ravel() for a in np.meshgrid(grid, grid))
+    raster, gcps = scene_and_gcps(cols, rows)
+    out = georef.georeference(raster, gcps, order=3)
+    assert abs(out.transform.a - 20.0) < 0.1
+    assert not [w for w in recwarn if "GCP extents" in str(w.message)]
+
+
+@pytest.mark.parametrize("kind, order", [("polynomial", 2), ("polynomial", 3),
+                                         ("projective", None)])
+def test_the_shipped_gcps_warn_that_degree_2_and_3_extrapolate_at_the_corners(kind, order):
+    # the hand-made GCPs' hull leaves the scene's corners 0.29 to 0.39 GCP extents out; there
+    # degree 3 and degree 1 differ by 53 px
+    raster, gcps = data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc")
+    with pytest.warns(ExtrapolationWarning, match=r"the output grid reaches 0\.[23]\d+ GCP extents .*"
+                                         r"not controlled by its GCPs there.*predicted_error_map"):
+        georef.georeference(raster, gcps, kind=kind, order=order, resolution=20.0)
+
+
+# -- issue 26: coordinates no position on Earth has never reach PROJ -----------------------------
+
+HUGE_CASES = """
+import time
+from rsgeo import georef
+calls = [
+    lambda: georef.datum_shift([[1e30, 1e30]], "EPSG:29193", "EPSG:31983"),
+    lambda: georef.transform_points([[1e30, 1e30]], "EPSG:29193", "EPSG:31983"),
+    lambda: georef.transform_points([[1e30, 1e30]], "EPSG:29193", "EPSG:31983", check_area=False),
+    lambda: georef.transform_points([[1e30, 1e30]], "EPSG:4326", "EPSG:31983"),
+    lambda: georef.transform_points([[1e30, 1e30]], "EPSG:4326", "EPSG:31983", check_area=False),
+    lambda: georef.datum_shift([[1e30, 1e30]], "EPSG:4326", "EPSG:31983"),
+    # PROJ wraps a Web Mercator longitude by a loop: x = 1e18 m took minutes
+    lambda: georef.transform_points([[1e18, 0.0]], "EPSG:3857", "EPSG:4326"),
+    lambda: georef.transform_points([[1e30, 1e30]], "EPSG:3857", "EPSG:4326", check_area=False),
+    lambda: georef.transform_points([[0.0, 0.0], [1e30, 0.0]], "EPSG:3857", "EPSG:29193",
+                                    check_area=False),
+]
+for call in calls:
+    try:
+        call()
+        print("answered")
+    except ValueError as error:
+        print(type(error).__name__, str(error)[:90])
+"""
+
+
+def test_huge_coordinates_are_refused_before_proj_promptly():
+    import subprocess
+    import sys
+
+    # in a subprocess with a time limit: a regression fails here instead of hanging the suite
+    run = subprocess.run([sys.executable, "-c", HUGE_CASES], capture_output=True, text=True,
+                         timeout=30)
+    assert run.returncode == 0, run.stderr
+    lines = run.stdout.splitlines()
+    assert len(lines) == 9 and all(line.startswith("CRSError") for line in lines), lines
+    # all but datum_shift 4326 -> 31983, refused first for its unlike CRSs
+    assert sum("no position on Earth has" in line for line in lines) == 8, lines
+
+
+def test_far_but_physical_coordinates_still_reach_proj():
+    # Web Mercator at 1e8 m (2.5 times around the Earth) wraps, as PROJ does; beyond 1e9 m not
+    moved = georef.transform_points([[1e8, 0.0]], "EPSG:3857", "EPSG:4326", check_area=False)
+    xs, ys = rasterio.warp.transform("EPSG:3857", "EPSG:4326", [1e8], [0.0])
+    np.testing.assert_array_equal(moved, np.column_stack([xs, ys]))
+    with pytest.raises(ValueError, match=r"1 of 1 points have a coordinate that no position on "
+                                         r"Earth has in EPSG:3857 \(first: point 0 \(2e\+09, 0\); "
+                                         r"its coordinates stay within ±1e\+09 metre"):
+        georef.transform_points([[2e9, 0.0]], "EPSG:3857", "EPSG:4326", check_area=False)
+    with pytest.raises(ValueError, match=r"in EPSG:4326 .*stay within ±9000 degree"):
+        georef.transform_points([[1e5, 0.0]], "EPSG:4326", "EPSG:4618", check_area=False)
+    # the geographic limit is in turns, not metres: 720° still reaches PROJ
+    moved = georef.transform_points([[720.0, 0.0]], "EPSG:4326", "EPSG:4618", check_area=False)
+    assert np.isfinite(moved).all()

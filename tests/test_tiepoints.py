@@ -335,6 +335,17 @@ def test_edge_share_separates_textured_from_smooth_windows(ccd_hrc):
     ({"min_contrast": np.nan}, ValueError, "min_contrast must be a finite number"),
     ({"min_contrast": "2"}, TypeError, "min_contrast must be a number"),
     ({"min_reliability": np.nan}, ValueError, "min_reliability must be a finite number"),
+    # issue 26: a negative threshold was accepted (it keeps every window, like 0, unsaid)
+    ({"min_reliability": -1}, ValueError,
+     r"min_reliability must be >= 0 \(a peak height in standard deviations; 0 keeps every "
+     r"window\), got -1"),
+    ({"min_reliability": True}, TypeError, "min_reliability must be a number, got bool"),
+    # bool is an int subclass: True is not taken for 1
+    ({"spacing": True}, TypeError, "spacing must be a number, got bool True"),
+    ({"upsample": True}, TypeError, "upsample must be a number, got bool True"),
+    ({"seed": True}, TypeError, "seed must be a number, got bool True"),
+    ({"upsample": np.True_}, TypeError, "upsample must be a number, got bool"),
+    ({"upsample": 2.5}, ValueError, "upsample must be a whole number, got 2.5"),
     ({"tolerance": -1}, ValueError, "tolerance must be"),
     ({"max_edge_share": 1.5}, ValueError, "max_edge_share must be"),
     ({"window": 1}, ValueError, "window must be >= 8"),
