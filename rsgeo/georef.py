@@ -538,7 +538,7 @@ def _check_extrapolation(model, reverse, image_shape):
     by ``model.outside_gcps``. Order 1, linear, Helmert and TPS (affine outside its GCPs)
     extrapolate linearly and are not checked.
     """
-    kind = model.kind                       # the fitted kind, also for kind=2 (a polynomial)
+    kind = getattr(model, "kind", None)     # the fitted kind, also for kind=2 (a polynomial)
     if kind == "polynomial" and model.order >= 2:
         what = _("a polynomial of degree {order}").format(order=model.order)
         remedy = _("use order=1, which extrapolates linearly")
@@ -583,7 +583,12 @@ def _fit(gcps, kind, order):
     fit_transform = getattr(_transforms, "fit_transform", None)   # the other model kinds
     if fit_transform is None:
         raise GCPError(f"kind {kind!r} is not available; use kind='polynomial' with an order")
-    return fit_transform(gcps.map_xy[gcps.enabled], gcps.image_xy[gcps.enabled], kind, order)
+    image_xy, map_xy = gcps.image_xy[gcps.enabled], gcps.map_xy[gcps.enabled]
+    if kind == "tps":
+        # GDAL's TPS transformer: the image -> map spline, inverted point by point (its
+        # GDALGenericInverse2D steps), not a second spline fitted the other way
+        return fit_transform(image_xy, map_xy, kind).inverse()
+    return fit_transform(map_xy, image_xy, kind, order)
 
 
 def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=None,

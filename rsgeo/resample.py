@@ -80,6 +80,7 @@ from ._checks import (
     as_integer,
     as_nodata,
     as_num_threads,
+    as_number,
     as_output_shape,
     as_resolution,
     as_scale,
@@ -88,6 +89,7 @@ from ._checks import (
 )
 from ._i18n import _
 from .errors import GridError, ImageError, ModelError, RsgeoError
+from .transformer import ARRAYS, pack, row_positions, to_source
 
 __all__ = [
     "METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
@@ -341,7 +343,7 @@ def interpolate(image, cols, rows, method="nearest", nodata=0, num_threads=1, sc
     # rows of positions for the threads: the last axis, or blocks of a long 1-D list
     row_length = cols.shape[-1] if cols.ndim >= 2 else min(cols.size, _BLOCK)
     out, _landed = _resample(image, method, nodata, num_threads, cols.ravel(), rows.ravel(),
-                             _NO_AFFINE, cols.size, row_length, scale, valid)
+                             _POSITIONS_GIVEN, cols.size, row_length, scale, valid)
     return out.reshape(shape)
 
 
@@ -434,7 +436,8 @@ def _check_positions(cols, rows):
 # A 1-D list of positions is shared among threads in blocks of this many.
 _BLOCK = 4096
 # "No affine mapping": the positions come as arrays (see _source_position).
-_NO_AFFINE = np.empty(0)
+# the packed transformer of positions given as arrays (rsgeo.transformer's kind ARRAYS)
+_POSITIONS_GIVEN = np.zeros(10)
 _NO_POSITIONS = np.empty(0)
 # "No source validity mask": every source pixel is valid.
 _NO_MASK = np.empty((0, 0, 0), dtype=np.uint8)
@@ -446,14 +449,14 @@ _COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
                 np.dtype(np.longdouble): np.dtype(np.float64)}
 
 
-def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, row_length,
+def _resample(image, method, nodata, num_threads, cols, rows, packed, size, row_length,
               scale=(1.0, 1.0), valid=None):
     """Run one method's kernel over ``size`` output pixels; return (out, pixels inside).
 
     ``out`` is (bands, size) in ``image``'s dtype. Positions come from the
-    arrays ``cols``, ``rows`` or, when ``to_source`` holds two GDAL geotransforms
-    (the output grid's pixel -> map, then map -> source pixel), are computed
-    pixel by pixel from an output grid ``row_length`` pixels wide. ``valid``:
+    arrays ``cols``, ``rows`` (``packed`` is ``_POSITIONS_GIVEN``) or are
+    computed row by row by the packed transformer (:mod:`rsgeo.transformer`)
+    for an output grid ``row_length`` pixels wide. ``valid``:
     the source validity mask (:func:`_validity`), or None for none.
     """
     bands = image if image.ndim == 3 else image[np.newaxis]
@@ -501,23 +504,23 @@ def _resample(image, method, nodata, num_threads, cols, rows, to_source, size, r
         if method == "average":
             margins = [2 * max(1, int(np.ceil(1.0 / value))) for value in scale]
             inside = _average_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                                   to_source, n_rows, row_length, out, fill, step, compare,
+                                   packed, n_rows, row_length, out, fill, step, compare,
                                    work.kind in "ui", low, high, margins[0], margins[1], valid)
         elif widened:
             inside = _widened_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                                   to_source, n_rows, row_length, out, fill, step, compare,
+                                   packed, n_rows, row_length, out, fill, step, compare,
                                    work.kind in "ui", low, high, _RADIUS[method],
                                    float(xscale), float(yscale))
         elif method == "nearest":
             inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                            to_source, n_rows, row_length, out, fill, step, compare,
+                            packed, n_rows, row_length, out, fill, step, compare,
                             work.kind in "ui", low, high, valid)
         else:
             # GDAL's general path (GWKRealCase) with a destination nodata, and for the types
             # without a specialised no-mask kernel
             masked = avoid or dtype.name not in _NO_MASK_TYPES
             inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                            to_source, n_rows, row_length, out, fill, step, compare,
+                            packed, n_rows, row_length, out, fill, step, compare,
                             work.kind in "ui", low, high, masked, valid)
     finally:
         numba.set_num_threads(previous)
@@ -545,19 +548,53 @@ def _pixel(bands, band, row, col):
 
 
 @njit(cache=True, inline="always")
-def _source_position(k, i, j, cols, rows, to_source):
-    """Where output pixel k (row i, column j of the output grid) falls in the source.
+def _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width, height):
+    """Where the pixels of output row i fall in the source; returns how many pixels it has.
 
-    Either read from the arrays of positions, or computed at the cell's centre
-    (j + 0.5, i + 0.5) in GDAL's two steps (:func:`_corner_to_source`): output
-    pixel -> map, then map -> source pixel, as GDALGenImgProjTransform does
-    with GDAL's exact transformer. (Composing the two affine maps into one
-    first rounds differently in the last bit, which decides the exact .5
-    ties of an enlargement such as 10 m -> 4 m.)
+    Either read from the arrays of positions (kind ARRAYS), or computed by
+    the packed transformer (:func:`rsgeo.transformer.row_positions`: the
+    output pixel's centre (j + 0.5, i + 0.5) through the output grid's
+    geotransform and the model, as GDAL's transformer does for a row, exactly
+    or with GDAL's approximation, then its second try near the source's
+    edges, :func:`_exact_near_edges`). The last row of a strip may be short.
     """
-    if to_source.size == 0:
-        return cols[_u(k)], rows[_u(k)]
-    return _corner_to_source(to_source, j + 0.5, i + 0.5)
+    first = i * row_length
+    n = min(row_length, size - first)
+    if packed[0] == ARRAYS:
+        for j in range(n):
+            row_cols[j] = cols[_u(first + j)]
+            row_rows[j] = rows[_u(first + j)]
+    else:
+        row_positions(packed, i, n, row_cols, row_rows)
+        if packed[1] > 0.0:
+            _exact_near_edges(packed, i, n, row_cols, row_rows, width, height)
+    return n
+
+
+@njit(cache=True)
+def _exact_near_edges(packed, i, n, row_cols, row_rows, width, height):
+    """GDAL's second try: an approximated position just outside the source is made exact.
+
+    An approximated position less than a pixel outside an edge may be an
+    approximation's error: GDAL transforms that pixel again, alone, exactly,
+    and tests it again (GWKCheckAndComputeSrcOffsets). The edges are tested
+    in GDAL's order (left, top, right, bottom); the first one the position
+    fails decides.
+    """
+    for j in range(n):
+        col, row = row_cols[j], row_rows[j]
+        if col < 0.0:
+            again = col > -1.0
+        elif row < 0.0:
+            again = row > -1.0
+        elif col + _GDAL_INDEX_EPSILON > width:
+            again = col < width + 1.0
+        elif row + _GDAL_INDEX_EPSILON > height:
+            again = row < height + 1.0
+        else:
+            again = False
+        if again:
+            row_cols[j], row_rows[j] = to_source(packed, j + 0.5, i + 0.5)
 
 
 @njit(cache=True, inline="always")
@@ -593,7 +630,7 @@ def _store(out, band, k, value, step, nodata, is_int, low, high):
 
 
 @njit(cache=True, parallel=True)
-def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+def _nearest_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                   is_int, low, high, valid):
     """Nearest neighbour (GDAL's GWKNearest), pixel by pixel.
 
@@ -611,11 +648,13 @@ def _nearest_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
     landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
     for i in prange(n_rows):
         landed_in_row = 0
-        for j in range(row_length):
+        row_cols = np.empty(row_length)
+        row_rows = np.empty(row_length)
+        n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
+                           height)
+        for j in range(n):
             k = i * row_length + j
-            if k >= size:
-                break
-            col, row = _source_position(k, i, j, cols, rows, to_source)
+            col, row = row_cols[j], row_rows[j]
             if not _is_inside(col, row, width, height):
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
@@ -805,7 +844,7 @@ def _centre_is_invalid(valid, col, row):
 
 
 @njit(cache=True, parallel=True)
-def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+def _bilinear_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                    is_int, low, high, masked, valid):
     """Bilinear interpolation, pixel by pixel.
 
@@ -823,11 +862,13 @@ def _bilinear_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, 
     landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
     for i in prange(n_rows):
         landed_in_row = 0
-        for j in range(row_length):
+        row_cols = np.empty(row_length)
+        row_rows = np.empty(row_length)
+        n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
+                           height)
+        for j in range(n):
             k = i * row_length + j
-            if k >= size:
-                break
-            col, row = _source_position(k, i, j, cols, rows, to_source)
+            col, row = row_cols[j], row_rows[j]
             if not _is_inside(col, row, width, height):
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
@@ -876,7 +917,7 @@ def _cubic_window_is_valid(valid, band, top, left):
 
 
 @njit(cache=True, parallel=True)
-def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+def _cubic_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                 is_int, low, high, masked, valid):
     """Cubic convolution, pixel by pixel.
 
@@ -901,11 +942,13 @@ def _cubic_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, ste
     landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
     for i in prange(n_rows):
         landed_in_row = 0
-        for j in range(row_length):
+        row_cols = np.empty(row_length)
+        row_rows = np.empty(row_length)
+        n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
+                           height)
+        for j in range(n):
             k = i * row_length + j
-            if k >= size:
-                break
-            col, row = _source_position(k, i, j, cols, rows, to_source)
+            col, row = row_cols[j], row_rows[j]
             if not _is_inside(col, row, width, height):
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
@@ -989,7 +1032,7 @@ def _filter_weight(x, radius):
 
 
 @njit(cache=True, parallel=True)
-def _widened_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+def _widened_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                   is_int, low, high, radius, xscale, yscale):
     """Bilinear or cubic widened by 1/scale when downsampling: GDAL's GWKResample.
 
@@ -1018,11 +1061,13 @@ def _widened_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
     for i in prange(n_rows):
         landed_in_row = 0
         weights_x = np.empty(2 * x_radius + 2)
-        for j in range(row_length):
+        row_cols = np.empty(row_length)
+        row_rows = np.empty(row_length)
+        n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
+                           height)
+        for j in range(n):
             k = i * row_length + j
-            if k >= size:
-                break
-            col, row = _source_position(k, i, j, cols, rows, to_source)
+            col, row = row_cols[j], row_rows[j]
             if not _is_inside(col, row, width, height):
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
@@ -1092,27 +1137,13 @@ def _edge_weight(index, first, stop, low, high):
     return 1.0
 
 
-@njit(cache=True, inline="always")
-def _corner_to_source(to_source, j, i):
-    """A cell corner (j, i) of the output grid in the source, in GDAL's two steps.
-
-    ``to_source`` holds two GDAL geotransforms (c, a, b, f, d, e): the output
-    grid's (pixel -> map) and the source's inverse (map -> pixel); each is
-    applied as GDALApplyGeoTransform does, c + x * a + y * b.
-    """
-    x = to_source[0] + j * to_source[1] + i * to_source[2]
-    y = to_source[3] + j * to_source[4] + i * to_source[5]
-    return (to_source[6] + x * to_source[7] + y * to_source[8],
-            to_source[9] + x * to_source[10] + y * to_source[11])
-
-
 @njit(cache=True, parallel=True)
-def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, step, nodata,
+def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                   is_int, low, high, x_margin, y_margin, valid):
     """Area-weighted average (GDAL's GWKAverageOrMode, "average"), cell by cell.
 
     For each output cell: take its top-left and bottom-right corners to the
-    source (from ``to_source``, or from the arrays of corner positions, a
+    source (by the packed transformer, or from the arrays of corner positions, a
     (n_rows + 1) x (row_length + 1) grid); a cell whose corners are more than
     a margin (2 ceil(1/scale) pixels) outside the image gets nodata. The
     source pixels between the corners each weigh the fraction of their
@@ -1133,13 +1164,14 @@ def _average_loop(bands, cols, rows, to_source, n_rows, row_length, out, fill, s
             k = i * row_length + j
             if k >= size:
                 break
-            if to_source.size == 0:
+            if packed[0] == ARRAYS:
                 corner = i * (row_length + 1) + j
                 x1, y1 = cols[_u(corner)], rows[_u(corner)]
                 x2, y2 = cols[_u(corner + row_length + 2)], rows[_u(corner + row_length + 2)]
             else:
-                x1, y1 = _corner_to_source(to_source, float(j), float(i))
-                x2, y2 = _corner_to_source(to_source, j + 1.0, i + 1.0)
+                # the cell's corners, exactly (GDAL approximates them too: not followed)
+                x1, y1 = to_source(packed, float(j), float(i))
+                x2, y2 = to_source(packed, j + 1.0, i + 1.0)
             near = (x1 >= -x_margin and x2 >= -x_margin and y1 >= -y_margin
                     and y2 >= -y_margin and x1 - width <= x_margin and x2 - width <= x_margin
                     and y1 - height <= y_margin and y2 - height <= y_margin)
@@ -1221,15 +1253,20 @@ def grid_positions(shape, transform=None, first_row=0):
 
 
 def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
-         num_threads=1, scale=None, src_nodata=None):
+         num_threads=1, scale=None, src_nodata=None, error_threshold=0.0, src_offset=None):
     """The corrected image: every output cell filled from where ``mapping`` sends it.
 
     This is the lecture's "construir uma nova imagem corrigida": the output grid
     is defined in map coordinates, ``mapping`` is the model u = f(x, y),
     v = g(x, y) from map to image coordinates, and each cell takes the value
-    interpolated at that source position. A callable mapping is evaluated in
-    strips of ``strip_rows`` rows so that memory stays a small multiple of
-    input plus output.
+    interpolated at that source position.
+
+    An ``affine.Affine`` and rsgeo's polynomial, projective and thin-plate
+    spline models are evaluated inside the compiled kernel, row by row, as
+    GDAL's transformer is (:mod:`rsgeo.transformer`): no array of positions
+    is ever made. Any other callable is evaluated in NumPy, in strips of
+    ``strip_rows`` rows, so that memory stays a small multiple of input plus
+    output.
 
     Parameters
     ----------
@@ -1271,6 +1308,20 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         The source's nodata value (gdalwarp's ``-srcnodata``; NaN for NaN
         pixels), with GDAL's semantics (see :func:`interpolate`); also for
         "average", which leaves such pixels out.
+    error_threshold : float
+        GDAL's approximate transformer (``gdalwarp -et``; gdalwarp's and
+        ``rasterio.warp.reproject``'s default is 0.125 source pixel): each
+        output row's positions are interpolated linearly between exact ones
+        wherever that stays within this many pixels (|dcol| + |drow|) of the
+        exact position, as ``GDALApproxTransform`` does, pixel for pixel.
+        0 (the default): every position exact (``-et 0``). Needs a compiled
+        mapping (an ``affine.Affine`` or an rsgeo model); "average" evaluates
+        its cell corners exactly.
+    src_offset : (int, int), optional
+        The first (col, row) of ``image`` in the full source, when ``image``
+        is a window of it (GDAL's source window; :mod:`rsgeo.tiling` warps a
+        scene tile by tile this way): ``mapping`` still gives positions in the
+        full source. Needs ``scale``, so that tiles share one kernel.
 
     Returns
     -------
@@ -1287,7 +1338,9 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         that would return nothing but nodata; if ``transform`` holds NaN or
         infinity; if ``strip_rows`` is not a whole number from 1; if the
         output would not fit in this machine's memory (the message gives
-        its size in GiB: choose a coarser grid or warp a window at a time).
+        its size in GiB: choose a coarser grid or warp a window at a time);
+        if ``error_threshold`` is negative or given with a mapping that is
+        evaluated in NumPy; if ``src_offset`` is given without ``scale``.
     TypeError
         If ``mapping`` is neither callable nor an ``affine.Affine`` (a GDAL
         6-tuple: convert it with ``affine.Affine.from_gdal``), or
@@ -1317,24 +1370,37 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
                             why="rows of the output grid computed at a time")
     _check_exact_in_float64(image, method)
     valid = _validity(image, src_nodata)
+    error_threshold = as_number(error_threshold, "error_threshold", low=0.0,
+                                why="source pixels; 0 for exact positions")
+    src_offset = _as_src_offset(src_offset, scale)
     scale = (as_scale(scale) if scale is not None
              else grid_scale(mapping, (out_rows, out_cols), to_map, image.shape[-2:]))
     height, width = image.shape[-2:]
     dtype = image.dtype
     image = _native(image)    # float16 and big-endian converted once, not once per strip
-    if isinstance(mapping, affine.Affine):
-        # an affine map: each output pixel's source position (or average's cell corners)
-        # is computed in the kernel through the two geotransforms, as GDAL does
-        two_steps = np.array(to_map.to_gdal() + mapping.to_gdal(), dtype=np.float64)
+    packed = pack(mapping, to_map, src_offset, error_threshold)
+    if packed is not None:
+        # a compiled model: each output pixel's source position (or average's cell corners)
+        # is computed in the kernel, row by row, as GDAL's transformer does
         flat, landed = _resample(image, method, nodata, num_threads, _NO_POSITIONS,
-                                 _NO_POSITIONS, two_steps, out_rows * out_cols, out_cols, scale,
+                                 _NO_POSITIONS, packed, out_rows * out_cols, out_cols, scale,
                                  valid)
         out = flat.reshape((bands, out_rows, out_cols)).astype(dtype, copy=False)
         if not landed:
-            x, y = to_map @ (np.array([0.5, out_cols - 0.5]), np.array([[0.5], [out_rows - 0.5]]))
-            corner_cols, corner_rows = mapping @ (x, y)
-            spans = [(corner_cols.min(), corner_cols.max(), corner_rows.min(), corner_rows.max())]
+            # the outermost pixel centres, to say where the grid went
+            centre_cols, centre_rows = np.meshgrid([0.5, out_cols - 0.5], [0.5, out_rows - 0.5])
+            corners = (_call_mapping(mapping, *(to_map @ (centre_cols, centre_rows)))
+                       - np.asarray(src_offset))
+            spans = [(corners[:, 0].min(), corners[:, 0].max(), corners[:, 1].min(),
+                      corners[:, 1].max())]
     else:
+        if error_threshold > 0:
+            raise RsgeoError(_(
+                "error_threshold={threshold} approximates a compiled mapping's positions, but "
+                "{mapping!r} is a Python function, evaluated in NumPy at every output pixel; "
+                "give error_threshold=0, or a mapping rsgeo compiles (an affine.Affine or a "
+                "model from rsgeo.transforms.fit_transform)").format(
+                    threshold=error_threshold, mapping=type(mapping).__name__))
         out = np.empty((bands, out_rows, out_cols), dtype=dtype)
         landed = 0
         spans = []
@@ -1347,13 +1413,11 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
                 x, y = to_map @ (corner_cols, corner_rows)
             else:
                 x, y = grid_positions((stop - start, out_cols), to_map, first_row=start)
-            source = np.asarray(mapping(np.column_stack([x.ravel(), y.ravel()])), dtype=np.float64)
-            if source.shape != (x.size, 2):
-                raise ModelError(f"mapping must return an (n, 2) array of (col, row), got shape "
-                                 f"{source.shape}")
-            source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
+            source = _call_mapping(mapping, x, y)
+            source_cols, source_rows = _check_positions(source[:, 0] - src_offset[0],
+                                                        source[:, 1] - src_offset[1])
             strip, inside = _resample(image, method, nodata, num_threads, source_cols,
-                                      source_rows, _NO_AFFINE, (stop - start) * out_cols,
+                                      source_rows, _POSITIONS_GIVEN, (stop - start) * out_cols,
                                       out_cols, scale, valid)
             out[:, start:stop, :] = strip.reshape(bands, stop - start, out_cols)
             if not landed:
@@ -1363,6 +1427,35 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     if not landed:
         raise GridError(_nothing_lands_message(mapping, spans, width, height))
     return out if image.ndim == 3 else out[0]
+
+
+def _as_src_offset(src_offset, scale):
+    """The source window's (col, row) offset, two whole numbers from 0; (0, 0) for none."""
+    if src_offset is None:
+        return (0.0, 0.0)
+    if scale is None:
+        raise RsgeoError(_(
+            "src_offset (a window of the source) needs scale=(xscale, yscale): the kernel's "
+            "scale must be the whole warp's, so that windows join without seams; compute it "
+            "once with grid_scale(mapping, shape, transform, src_shape) for the whole grid"))
+    if np.ndim(src_offset) != 1 or len(src_offset) != 2:
+        raise RsgeoError(_("src_offset must be (col, row) of the window's first pixel, got "
+                           "{value!r}").format(value=src_offset))
+    return tuple(float(as_integer(value, name, low=0, why="the window's first pixel"))
+                 for value, name in zip(src_offset, ("src_offset col", "src_offset row")))
+
+
+def _call_mapping(mapping, x, y):
+    """A mapping at the map points (x, y): an (n, 2) array of source (col, row)."""
+    points = np.column_stack([np.ravel(x), np.ravel(y)])
+    if isinstance(mapping, affine.Affine):
+        cols, rows = mapping @ (points[:, 0], points[:, 1])
+        return np.column_stack([cols, rows])
+    source = np.asarray(mapping(points), dtype=np.float64)
+    if source.shape != (points.shape[0], 2):
+        raise ModelError(f"mapping must return an (n, 2) array of (col, row), got shape "
+                         f"{source.shape}")
+    return source
 
 
 def _nothing_lands_message(mapping, spans, width, height):

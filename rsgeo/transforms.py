@@ -28,11 +28,12 @@ from dataclasses import dataclass, field
 from math import comb
 
 import numpy as np
-from scipy.interpolate import RBFInterpolator
 
+from . import thin_plate
 from ._checks import as_integer, as_number, as_points
 from ._i18n import _
 from .errors import GCPError, ModelError
+from .transformer import polynomial_many, polynomial_parameters
 
 __all__ = [
     "GEOREFERENCER_MODELS",
@@ -546,9 +547,19 @@ class PolynomialModel(GeometricModel):
         return int(self.coefficients.size)
 
     def __call__(self, points):
-        scaled_terms, _, _ = _normalised_design(as_points(points), self.order, self.origin,
-                                                self.scale)
-        return scaled_terms @ self._scaled_coefficients().T
+        # one evaluation for every caller: the same compiled code the warp kernels run
+        return polynomial_many(self.kernel_form()[1], as_points(points))
+
+    def kernel_form(self):
+        """The model packed for the warp kernels (see :mod:`rsgeo.transformer`).
+
+        Returns
+        -------
+        (str, ndarray)
+            ``("polynomial", parameters)``.
+        """
+        return "polynomial", polynomial_parameters(self.order, self.origin, self.scale,
+                                                   self._scaled_coefficients())
 
     def _scaled_coefficients(self):
         return self.coefficients * self.scale**_powers(self.coefficients.shape[1])
@@ -937,6 +948,17 @@ class MatrixModel(GeometricModel):
                              "to infinity; keep the points inside the GCPs' area")
         return homogeneous[:, :2] / w[:, np.newaxis]
 
+    def kernel_form(self):
+        """The model packed for the warp kernels (see :mod:`rsgeo.transformer`).
+
+        Returns
+        -------
+        (str, ndarray)
+            ``("projective", the matrix's 9 entries row by row)``; a linear or
+            Helmert matrix is a projective one with a last row of (0, 0, 1).
+        """
+        return "projective", self.matrix.ravel().copy()
+
     def inverse(self):
         """The exact inverse: the inverse matrix, same kind, src and dst swapped.
 
@@ -1026,12 +1048,19 @@ def _fit_projective(src, dst):
 
 
 class TPSModel(GeometricModel):
-    """Thin-plate spline through every GCP (GDAL's ``-tps``).
+    """Thin-plate spline through every GCP, GDAL's (``gdalwarp -tps``), bit for bit.
 
-    u(x, y) = a0 + a1 x + a2 y + Σ w_i r_i² log r_i, the same for v, with
-    r_i the distance to GCP i; the weights make it pass exactly through every
-    GCP and its bending energy is the smallest that does. Evaluated with
-    SciPy's ``RBFInterpolator(kernel="thin_plate_spline", degree=1)``.
+    u(x, y) = a0 + a1 x + a2 y + Σ w_i r_i² log r_i², the same for v, with
+    r_i the distance to GCP i (x and y measured from the GCPs' mean); the
+    weights make it pass through every GCP and its bending energy is the
+    smallest that does. Solved and evaluated as GDAL's ``VizGeorefSpline2D``
+    does (:mod:`rsgeo.thin_plate`): the same LU decomposition, the same
+    order of operations, GDAL's faster logarithm for the grouped terms, so
+    its values equal GDAL's to the last bit. It therefore misses its GCPs by
+    GDAL's rounding (about 1e-11 px with tens of GCPs, 1e-7 px with
+    thousands), and GCPs nearly on one line (r² of their x and y above 0.99,
+    or one extent under a thousandth of the other) give GDAL's
+    piecewise-linear interpolation along that line instead of a spline.
 
     Parameters
     ----------
@@ -1051,6 +1080,9 @@ class TPSModel(GeometricModel):
         2 (n + 3): n weights and 3 affine coefficients per output.
     skipped : tuple of int
         The exact duplicates left out.
+    packed : ndarray
+        The solved spline, read-only, for :func:`rsgeo.thin_plate.evaluate`
+        (its layout is in that module's docstring).
     """
 
     kind = "tps"
@@ -1060,7 +1092,8 @@ class TPSModel(GeometricModel):
         self.dst = np.array(dst, dtype=np.float64)
         self.skipped = tuple(skipped)
         self.n_parameters = n_parameters("tps", n_gcps=len(self.src))
-        self._spline = RBFInterpolator(self.src, self.dst, kernel="thin_plate_spline", degree=1)
+        self.packed = thin_plate.solve(self.src, self.dst)
+        self.packed.flags.writeable = False
         self._floor = None
 
     def __call__(self, points):
@@ -1079,15 +1112,26 @@ class TPSModel(GeometricModel):
         ValueError
             If the points are not (n, 2) finite numbers.
         """
-        return self._spline(as_points(points))
+        return _evaluate_tps(self.packed, points)
+
+    def kernel_form(self):
+        """The model packed for the warp kernels (see :mod:`rsgeo.transformer`).
+
+        Returns
+        -------
+        (str, ndarray)
+            ``("tps", packed)``: :attr:`packed`.
+        """
+        return "tps", self.packed
 
     def reverse(self):
         """A thin-plate spline fitted the other way round (dst -> src), as GDAL does.
 
         GDAL's TPS transformer fits a second spline from dst to src on the
-        same GCPs (what rasterio's ``GCPTransformer(gcps, tps=True)`` returns in
-        that direction). Both pass through every GCP, so they are inverse at
-        the GCPs and only approximately so between them (a tenth of a pixel).
+        same GCPs, the start of its inversion (:meth:`inverse`); rasterio's
+        ``GCPTransformer(gcps, tps=True).rowcol`` is this spline. Both pass
+        through every GCP, so they are inverse at the GCPs and only
+        approximately so between them (a tenth of a pixel).
 
         Returns
         -------
@@ -1132,49 +1176,61 @@ class TPSModel(GeometricModel):
             columns.append((self(points + offset) - self(points - offset)) / (2 * h))
         return np.stack(columns, axis=-1)
 
-    def inverse(self, tolerance=1e-10, max_iterations=30):
-        """The exact inverse (dst -> src), by Newton's method on this spline.
+    def inverse(self, tolerance=1e-10, max_iterations=thin_plate.GDAL_STEPS):
+        """The inverse (dst -> src), by GDAL's Newton's method on this spline.
 
-        Each point starts from :meth:`reverse` (the spline fitted the other way
-        round) and is polished until model(p) = q within ``tolerance`` times the
-        dst extent (:func:`newton_inverse`), or within what float64 evaluation
-        of the spline can reach if that is more: ten times its largest miss at
-        its own GCPs (a spline through thousands of noisy GCPs sums terms far
-        larger than its value, and GDAL autotest's 2,115-GCP case cannot be
-        evaluated to 1e-10 of its extent). This is what GDAL's warper uses:
-        ``gdalwarp -tps`` with a spline fitted image -> map maps every output
-        cell back by inverting it.
+        What gdalwarp computes for each output cell when the spline is fitted
+        image -> map (``gdalwarp -tps``; GDAL's ``GDALTPSTransform`` from dst
+        to src): each point starts from :meth:`reverse`, the spline fitted the
+        other way round, and is refined by ``GDALGenericInverse2D`` - Newton's
+        method with the Jacobian estimated once, at the start, by forward
+        differences - until both coordinates of model(p) are within 1e-12 of
+        the target's largest coordinate, in at most ``max_iterations`` steps.
+        The result equals GDAL's to the last bit, and the warp kernels compute
+        the same (the inverse's ``kernel_form``).
+
+        GDAL keeps its last step where it has not converged (its Jacobian,
+        estimated once, can be far from the one at the root where the spline
+        bends strongly: a few 1e-9 of the extent off after 15 steps). Here,
+        for those points only, Newton's method goes on from that step with
+        the Jacobian at every step (:func:`newton_inverse`) until
+        ``|model(p) - q|`` is within ``tolerance`` times the dst extent, or
+        within what float64 evaluation of the spline can reach
+        (:meth:`evaluation_floor`: a spline through thousands of noisy GCPs
+        sums terms far larger than its value); otherwise ``ModelError``. The
+        warp kernels, like gdalwarp, use GDAL's steps alone.
 
         Parameters
         ----------
         tolerance : float
-            Largest accepted ``|model(p) - q|``, relative to the extent of ``dst``.
+            Largest accepted ``|model(p) - q|`` where GDAL's own test fails,
+            relative to the extent of ``dst``.
         max_iterations : int
+            Newton steps at most, GDAL's (15 in GDAL) and again as many for
+            the points they leave short.
 
         Returns
         -------
         InverseModel
-            Raises ``ModelError`` where Newton's method does not converge.
+            Raises ``ModelError`` at points where the refinement does not
+            converge (the spline folds there); its ``packed`` attribute is
+            :func:`rsgeo.thin_plate.pack_inverse` of this spline and its reverse.
 
         Raises
         ------
         GCPError
             If the reverse spline cannot be fitted (repeated or collinear dst).
+        ValueError
+            If ``tolerance`` is negative or ``max_iterations`` not an integer >= 0.
         """
-        def failure(failed, targets):
-            return (f"the thin-plate spline has no inverse at {failed.sum()} of {len(targets)} "
-                    "points: Newton's method did not converge (the spline folds there); keep "
-                    "the points inside the GCPs' area")
-
-        return newton_inverse(self, self.reverse(), tolerance, max_iterations, failure,
-                              floor=self.evaluation_floor())
+        return _TPSInverse(self, self.reverse(), tolerance, max_iterations)
 
     def evaluation_floor(self):
         """How closely float64 evaluation of this spline can meet a target, dst units.
 
         Ten times its largest miss at its own GCPs, where it passes exactly in
         exact arithmetic: what is left is the rounding of the linear solve and
-        of the sums of the kernel terms.
+        of the sums of the kernel terms (and of GDAL's faster logarithm).
 
         Returns
         -------
@@ -1187,6 +1243,56 @@ class TPSModel(GeometricModel):
 
     def __repr__(self):
         return f"TPSModel(n_gcps={len(self.src)})"
+
+
+def _evaluate_tps(packed, points):
+    """A packed spline (or GDAL's inversion of one) at (n, 2) points, compiled."""
+    points = np.ascontiguousarray(as_points(points))
+    out = np.empty_like(points)
+    thin_plate.evaluate_many(packed, points, out)
+    return out
+
+
+class _TPSInverse(InverseModel):
+    """A :class:`TPSModel` inverted as GDAL's TPS transformer does (:meth:`TPSModel.inverse`)."""
+
+    def __init__(self, forward, reverse, tolerance, max_iterations):
+        self.packed = thin_plate.pack_inverse(forward.packed, reverse.packed, max_iterations)
+        self.packed.flags.writeable = False
+        self._tolerance = as_number(tolerance, "tolerance", low=0,
+                                    why="relative to the dst extent")
+        self._max_iterations = int(self.packed[1])
+        super().__init__(forward, self._solve_points)
+
+    def kernel_form(self):
+        """The inversion packed for the warp kernels (see :mod:`rsgeo.transformer`).
+
+        Returns
+        -------
+        (str, ndarray)
+            ``("tps", packed)``: GDAL's steps only, as gdalwarp computes them.
+        """
+        return "tps", self.packed
+
+    def _solve_points(self, targets):
+        targets = np.ascontiguousarray(targets)
+        points = np.empty_like(targets)
+        converged = np.empty(len(targets), dtype=bool)
+        thin_plate.invert_many(self.packed, targets, points, converged)
+        if not converged.all():
+            # GDAL would keep its last step; go on from it with the full Jacobian at each step
+            rest = ~converged
+            polish = newton_inverse(self.forward, lambda _targets: points[rest], self._tolerance,
+                                    self._max_iterations, _tps_inverse_failure,
+                                    floor=self.forward.evaluation_floor())
+            points[rest] = polish(targets[rest])
+        return points
+
+
+def _tps_inverse_failure(failed, targets):
+    return _("the thin-plate spline has no inverse at {failed} of {total} points: Newton's "
+             "method did not converge (the spline folds there); keep the points inside the "
+             "GCPs' area").format(failed=int(failed.sum()), total=len(targets))
 
 
 #: GCPs whose src points are closer than this fraction of the GCPs' src extent while their

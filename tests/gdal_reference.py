@@ -3,7 +3,9 @@
 The VRT names GDAL's transformer directly, with no approximate transformer
 around it (its default 0.125-pixel error threshold would move sample positions
 and change values), so GDAL computes every output pixel's source position
-exactly, like rsgeo does.
+exactly, like rsgeo does by default. ``gdal_warp(..., max_error=0.125)`` wraps
+it in GDAL's approximate transformer instead, as gdalwarp does by default, to
+check rsgeo's ``warp(..., error_threshold=0.125)``.
 """
 
 import os
@@ -33,7 +35,8 @@ def _write_source(folder, image):
 
 
 def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodata,
-              plain_kernels=False, scale=None, block=256, src_nodata=None, options=None):
+              plain_kernels=False, scale=None, block=256, src_nodata=None, options=None,
+              max_error=None):
     """Warp ``image`` with GDAL; ``source_transformer_xml`` places the source on the map.
 
     ``nodata``: the destination nodata, or None for none (gdalwarp without
@@ -45,6 +48,8 @@ def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodat
     ``block``: the VRT's block size, GDAL's chunk of output.
     ``src_nodata``: the source nodata (gdalwarp's ``-srcnodata``), or None for none.
     ``options``: more warp options, a dict of name -> value (e.g. UNIFIED_SRC_NODATA).
+    ``max_error``: wrap the transformer in GDAL's approximate transformer with this
+    error threshold in pixels (gdalwarp's ``-et``), or None for the exact transformer.
     """
     dtype = _GDAL_TYPES[np.dtype(image.dtype).name]
     with tempfile.TemporaryDirectory() as folder:
@@ -68,6 +73,14 @@ def gdal_warp(image, source_transformer_xml, dst_transform, shape, method, nodat
                          if scale is not None else "")
         scale_options += "".join(f'<Option name="{key}">{value}</Option>'
                                  for key, value in (options or {}).items())
+        transformer = f"""<GenImgProjTransformer>
+      {source_transformer_xml}
+      <DstGeoTransform>{_geotransform(dst_transform)}</DstGeoTransform>
+      <DstInvGeoTransform>{_geotransform(inverse)}</DstInvGeoTransform>
+    </GenImgProjTransformer>"""
+        if max_error is not None:
+            transformer = (f"<ApproxTransformer><MaxError>{max_error!r}</MaxError>"
+                           f"<BaseTransformer>{transformer}</BaseTransformer></ApproxTransformer>")
         xml = f"""<VRTDataset rasterXSize="{shape[1]}" rasterYSize="{shape[0]}" \
 subClass="VRTWarpedDataset">
   <GeoTransform>{_geotransform(dst_transform)}</GeoTransform>
@@ -79,11 +92,7 @@ subClass="VRTWarpedDataset">
     <WorkingDataType>{dtype}</WorkingDataType>
     <Option name="INIT_DEST">{init}</Option>{scale_options}
     <SourceDataset relativeToVRT="0">{source}</SourceDataset>
-    <Transformer><GenImgProjTransformer>
-      {source_transformer_xml}
-      <DstGeoTransform>{_geotransform(dst_transform)}</DstGeoTransform>
-      <DstInvGeoTransform>{_geotransform(inverse)}</DstInvGeoTransform>
-    </GenImgProjTransformer></Transformer>
+    <Transformer>{transformer}</Transformer>
     <BandList>{mapping}</BandList>
   </GDALWarpOptions>
 </VRTDataset>"""

@@ -11,8 +11,8 @@ from rasterio.control import GroundControlPoint
 from rasterio.warp import calculate_default_transform
 
 from rsgeo import data, georef, radiometry
-from rsgeo.gcp import GCPSet
 from rsgeo.errors import ExtrapolationWarning
+from rsgeo.gcp import GCPSet
 
 from gdal_reference import affine_source, gcp_source, gdal_warp
 
@@ -377,8 +377,9 @@ def test_the_shipped_gcps_warn_that_degree_2_and_3_extrapolate_at_the_corners(ki
     # the hand-made GCPs' hull leaves the scene's corners 0.29 to 0.39 GCP extents out; there
     # degree 3 and degree 1 differ by 53 px
     raster, gcps = data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc")
-    with pytest.warns(ExtrapolationWarning, match=r"the output grid reaches 0\.[23]\d+ GCP extents .*"
-                                         r"not controlled by its GCPs there.*predicted_error_map"):
+    with pytest.warns(ExtrapolationWarning,
+                      match=r"the output grid reaches 0\.[23]\d+ GCP extents .*"
+                            r"not controlled by its GCPs there.*predicted_error_map"):
         georef.georeference(raster, gcps, kind=kind, order=order, resolution=20.0)
 
 
