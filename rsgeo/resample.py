@@ -89,7 +89,7 @@ from ._checks import (
 )
 from ._i18n import _
 from .errors import GridError, ImageError, ModelError, RsgeoError
-from .transformer import ARRAYS, pack, row_positions, to_source
+from .transformer import ARRAYS, pack, pixel_centre, row_positions, to_source
 
 __all__ = [
     "METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights", "interpolate",
@@ -594,7 +594,8 @@ def _exact_near_edges(packed, i, n, row_cols, row_rows, width, height):
         else:
             again = False
         if again:
-            row_cols[j], row_rows[j] = to_source(packed, j + 0.5, i + 0.5)
+            row_cols[j], row_rows[j] = to_source(packed, pixel_centre(packed, j),
+                                                 (i + 0.5) + packed[11])
 
 
 @njit(cache=True, inline="always")
@@ -629,7 +630,7 @@ def _store(out, band, k, value, step, nodata, is_int, low, high):
         out[_u(band), _u(k)] = value
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, nogil=True)
 def _nearest_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                   is_int, low, high, valid):
     """Nearest neighbour (GDAL's GWKNearest), pixel by pixel.
@@ -843,7 +844,7 @@ def _centre_is_invalid(valid, col, row):
     return True
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, nogil=True)
 def _bilinear_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                    is_int, low, high, masked, valid):
     """Bilinear interpolation, pixel by pixel.
@@ -916,7 +917,7 @@ def _cubic_window_is_valid(valid, band, top, left):
     return True
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, nogil=True)
 def _cubic_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                 is_int, low, high, masked, valid):
     """Cubic convolution, pixel by pixel.
@@ -1031,7 +1032,7 @@ def _filter_weight(x, radius):
     return 0.0
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, nogil=True)
 def _widened_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                   is_int, low, high, radius, xscale, yscale):
     """Bilinear or cubic widened by 1/scale when downsampling: GDAL's GWKResample.
@@ -1137,7 +1138,7 @@ def _edge_weight(index, first, stop, low, high):
     return 1.0
 
 
-@njit(cache=True, parallel=True)
+@njit(cache=True, parallel=True, nogil=True)
 def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
                   is_int, low, high, x_margin, y_margin, valid):
     """Area-weighted average (GDAL's GWKAverageOrMode, "average"), cell by cell.
@@ -1170,8 +1171,8 @@ def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
                 x2, y2 = cols[_u(corner + row_length + 2)], rows[_u(corner + row_length + 2)]
             else:
                 # the cell's corners, exactly (GDAL approximates them too: not followed)
-                x1, y1 = to_source(packed, float(j), float(i))
-                x2, y2 = to_source(packed, j + 1.0, i + 1.0)
+                x1, y1 = to_source(packed, j + packed[10], i + packed[11])
+                x2, y2 = to_source(packed, (j + 1.0) + packed[10], (i + 1.0) + packed[11])
             near = (x1 >= -x_margin and x2 >= -x_margin and y1 >= -y_margin
                     and y2 >= -y_margin and x1 - width <= x_margin and x2 - width <= x_margin
                     and y1 - height <= y_margin and y2 - height <= y_margin)
@@ -1211,7 +1212,7 @@ def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
     return landed.sum()
 
 
-def grid_positions(shape, transform=None, first_row=0):
+def grid_positions(shape, transform=None, first_row=0, first_col=0):
     """Map coordinates of the centres of an output grid's cells.
 
     Parameters
@@ -1220,8 +1221,9 @@ def grid_positions(shape, transform=None, first_row=0):
         Output grid size.
     transform : affine.Affine, optional
         Output geotransform (pixel corner -> map). Identity (pixel coordinates) if omitted.
-    first_row : int
-        Row of the grid where this block starts (for processing a grid in strips).
+    first_row, first_col : int
+        Row and column of the grid where this block starts (for processing a
+        grid in strips or tiles).
 
     Returns
     -------
@@ -1246,14 +1248,15 @@ def grid_positions(shape, transform=None, first_row=0):
     (array([0.5, 1.5, 2.5]), array([0.5, 1.5]))
     """
     a, b, c, d, e, f = (transform if transform is not None else affine.Affine.identity())[:6]
-    cols = np.arange(shape[1]) + 0.5
+    cols = np.arange(first_col, first_col + shape[1]) + 0.5
     rows = (np.arange(first_row, first_row + shape[0]) + 0.5)[:, np.newaxis]
     # GDAL's order (GDALGenImgProjTransform, GDALApplyGeoTransform): c + col * a + row * b
     return c + cols * a + rows * b, f + cols * d + rows * e
 
 
 def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
-         num_threads=1, scale=None, src_nodata=None, error_threshold=0.0, src_offset=None):
+         num_threads=1, scale=None, src_nodata=None, error_threshold=0.0, src_offset=None,
+         dst_offset=None):
     """The corrected image: every output cell filled from where ``mapping`` sends it.
 
     This is the lecture's "construir uma nova imagem corrigida": the output grid
@@ -1322,6 +1325,12 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         is a window of it (GDAL's source window; :mod:`rsgeo.tiling` warps a
         scene tile by tile this way): ``mapping`` still gives positions in the
         full source. Needs ``scale``, so that tiles share one kernel.
+    dst_offset : (int, int), optional
+        The first (col, row) of this output in the grid of ``transform``,
+        when the output is a window (a tile) of that grid: its cell (i, j)
+        is the grid's (i + row, j + col), its centre at (j + 0.5) + col, as
+        GDAL's warp kernel computes a chunk's cells (so that tiles equal one
+        warp of the whole grid bit for bit, whatever the pixel size).
 
     Returns
     -------
@@ -1373,12 +1382,14 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     error_threshold = as_number(error_threshold, "error_threshold", low=0.0,
                                 why="source pixels; 0 for exact positions")
     src_offset = _as_src_offset(src_offset, scale)
+    dst_offset = _as_offset(dst_offset, "dst_offset", "the output window's first cell")
+    window_to_map = to_map @ affine.Affine.translation(*dst_offset)
     scale = (as_scale(scale) if scale is not None
-             else grid_scale(mapping, (out_rows, out_cols), to_map, image.shape[-2:]))
+             else grid_scale(mapping, (out_rows, out_cols), window_to_map, image.shape[-2:]))
     height, width = image.shape[-2:]
     dtype = image.dtype
     image = _native(image)    # float16 and big-endian converted once, not once per strip
-    packed = pack(mapping, to_map, src_offset, error_threshold)
+    packed = pack(mapping, to_map, src_offset, error_threshold, dst_offset)
     if packed is not None:
         # a compiled model: each output pixel's source position (or average's cell corners)
         # is computed in the kernel, row by row, as GDAL's transformer does
@@ -1388,7 +1399,8 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         out = flat.reshape((bands, out_rows, out_cols)).astype(dtype, copy=False)
         if not landed:
             # the outermost pixel centres, to say where the grid went
-            centre_cols, centre_rows = np.meshgrid([0.5, out_cols - 0.5], [0.5, out_rows - 0.5])
+            centre_cols, centre_rows = np.meshgrid(np.array([0.5, out_cols - 0.5]) + dst_offset[0],
+                                                   np.array([0.5, out_rows - 0.5]) + dst_offset[1])
             corners = (_call_mapping(mapping, *(to_map @ (centre_cols, centre_rows)))
                        - np.asarray(src_offset))
             spans = [(corners[:, 0].min(), corners[:, 0].max(), corners[:, 1].min(),
@@ -1408,11 +1420,14 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
             stop = min(start + strip_rows, out_rows)
             if method == "average":
                 # the cells' corners: one more row and column than the cells
-                corner_cols, corner_rows = np.meshgrid(np.arange(out_cols + 1.0),
-                                                       np.arange(start, stop + 1.0))
+                corner_cols, corner_rows = np.meshgrid(
+                    np.arange(out_cols + 1.0) + dst_offset[0],
+                    np.arange(start, stop + 1.0) + dst_offset[1])
                 x, y = to_map @ (corner_cols, corner_rows)
             else:
-                x, y = grid_positions((stop - start, out_cols), to_map, first_row=start)
+                x, y = grid_positions((stop - start, out_cols), to_map,
+                                      first_row=start + int(dst_offset[1]),
+                                      first_col=int(dst_offset[0]))
             source = _call_mapping(mapping, x, y)
             source_cols, source_rows = _check_positions(source[:, 0] - src_offset[0],
                                                         source[:, 1] - src_offset[1])
@@ -1429,6 +1444,17 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     return out if image.ndim == 3 else out[0]
 
 
+def _as_offset(offset, name, why):
+    """A window's (col, row) offset: two whole numbers from 0; (0.0, 0.0) for None."""
+    if offset is None:
+        return (0.0, 0.0)
+    if np.ndim(offset) != 1 or len(offset) != 2:
+        raise RsgeoError(_("{name} must be (col, row) of the window's first pixel, got "
+                           "{value!r}").format(name=name, value=offset))
+    return tuple(float(as_integer(value, f"{name} {axis}", low=0, why=why))
+                 for value, axis in zip(offset, ("col", "row")))
+
+
 def _as_src_offset(src_offset, scale):
     """The source window's (col, row) offset, two whole numbers from 0; (0, 0) for none."""
     if src_offset is None:
@@ -1438,11 +1464,7 @@ def _as_src_offset(src_offset, scale):
             "src_offset (a window of the source) needs scale=(xscale, yscale): the kernel's "
             "scale must be the whole warp's, so that windows join without seams; compute it "
             "once with grid_scale(mapping, shape, transform, src_shape) for the whole grid"))
-    if np.ndim(src_offset) != 1 or len(src_offset) != 2:
-        raise RsgeoError(_("src_offset must be (col, row) of the window's first pixel, got "
-                           "{value!r}").format(value=src_offset))
-    return tuple(float(as_integer(value, name, low=0, why="the window's first pixel"))
-                 for value, name in zip(src_offset, ("src_offset col", "src_offset row")))
+    return _as_offset(src_offset, "src_offset", "the window's first pixel")
 
 
 def _call_mapping(mapping, x, y):

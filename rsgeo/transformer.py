@@ -17,7 +17,10 @@ The packed array::
     [1]      error threshold in source pixels (0: exact; see below)
     [2], [3] source window offset (col, row): subtracted from every position
     [4:10]   the output grid's geotransform, GDAL order (c, a, b, f, d, e)
-    [10:]    the model's parameters (its ``kernel_form``):
+    [10:12]  the output window's offset (col, row) in that grid: pixel (j, i) of the window
+             is pixel (j + col, i + row) of the grid, its centre at (j + 0.5) + col, as
+             GDAL's warp kernel computes a chunk's pixels (iDstX + 0.5 + nDstXOff)
+    [12:]    the model's parameters (its ``kernel_form``):
              AFFINE      the source's inverse geotransform (map -> pixel), GDAL order
              POLYNOMIAL  order, origin x, origin y, scale, m, then m coefficients of col and
                          m of row, for coordinates centred on the origin and divided by scale
@@ -53,16 +56,18 @@ from numba import njit
 from . import thin_plate
 
 __all__ = ["ARRAYS", "AFFINE", "POLYNOMIAL", "PROJECTIVE", "TPS", "pack", "row_positions",
+           "pixel_centre", "positions", "to_source",
            "polynomial_parameters", "polynomial_point", "polynomial_many"]
 
 ARRAYS, AFFINE, POLYNOMIAL, PROJECTIVE, TPS = 0, 1, 2, 3, 4
 _KINDS = {"affine": AFFINE, "polynomial": POLYNOMIAL, "projective": PROJECTIVE, "tps": TPS}
-_HEADER = 10
+_HEADER = 12
 # the most halvings of a row before a segment is 5 pixels or fewer: 2 per level, 64 levels
 _STACK = 128
 
 
-def pack(mapping, dst_transform, src_offset=(0.0, 0.0), error_threshold=0.0):
+def pack(mapping, dst_transform, src_offset=(0.0, 0.0), error_threshold=0.0,
+         dst_offset=(0.0, 0.0)):
     """The packed transformer of a mapping, or None if it cannot be compiled.
 
     Parameters
@@ -78,6 +83,8 @@ def pack(mapping, dst_transform, src_offset=(0.0, 0.0), error_threshold=0.0):
         kernel starts there in the full source.
     error_threshold : float
         GDAL's approximation threshold in source pixels; 0 for exact.
+    dst_offset : (float, float)
+        The output window's first column and row in the grid of ``dst_transform``.
 
     Returns
     -------
@@ -88,7 +95,7 @@ def pack(mapping, dst_transform, src_offset=(0.0, 0.0), error_threshold=0.0):
     if kind is None:
         return None
     header = [float(kind), float(error_threshold), float(src_offset[0]), float(src_offset[1]),
-              *map(float, dst_transform.to_gdal())]
+              *map(float, dst_transform.to_gdal()), float(dst_offset[0]), float(dst_offset[1])]
     return np.concatenate([np.array(header), np.asarray(parameters, dtype=np.float64)])
 
 
@@ -236,19 +243,25 @@ def row_positions(packed, i, n, cols, rows):
     error threshold > 0 and the row has more than 5 pixels: then GDAL's
     approximation (:func:`_approximate_row`).
     """
-    py = i + 0.5
+    py = (i + 0.5) + packed[11]
     if packed[1] > 0.0 and n > 5:
         _approximate_row(packed, py, n, cols, rows)
     else:
         for j in range(n):
-            cols[j], rows[j] = to_source(packed, j + 0.5, py)
+            cols[j], rows[j] = to_source(packed, pixel_centre(packed, j), py)
+
+
+@njit(cache=True)
+def pixel_centre(packed, j):
+    """The x of pixel j's centre in the output grid: (j + 0.5) + the window's column offset."""
+    return (j + 0.5) + packed[10]
 
 
 @njit(cache=True)
 def _exact(packed, py, cols, rows, first, stop):
     """Exact positions of pixels first .. stop - 1 of the row."""
     for j in range(first, stop):
-        cols[j], rows[j] = to_source(packed, j + 0.5, py)
+        cols[j], rows[j] = to_source(packed, pixel_centre(packed, j), py)
 
 
 @njit(cache=True)
@@ -272,9 +285,9 @@ def _approximate_row(packed, py, n, cols, rows):
     """
     threshold = packed[1]
     middle = (n - 1) // 2
-    c0, r0 = to_source(packed, 0.5, py)
-    c1, r1 = to_source(packed, middle + 0.5, py)
-    c2, r2 = to_source(packed, n - 0.5, py)
+    c0, r0 = to_source(packed, pixel_centre(packed, 0), py)
+    c1, r1 = to_source(packed, pixel_centre(packed, middle), py)
+    c2, r2 = to_source(packed, pixel_centre(packed, n - 1), py)
     if not (_finite(c0, r0) and _finite(c1, r1) and _finite(c2, r2)):
         _exact(packed, py, cols, rows, 0, n)
         return
@@ -293,17 +306,16 @@ def _approximate_row(packed, py, n, cols, rows):
         sc0, sc1, sc2 = samples[top, 0], samples[top, 1], samples[top, 2]
         sr0, sr1, sr2 = samples[top, 3], samples[top, 4], samples[top, 5]
         middle = (count - 1) // 2
-        # pixel centres of the segment: x[k] = start + k + 0.5
-        x_first = start + 0.5
-        x_last = start + (count - 1) + 0.5
-        x_middle = start + middle + 0.5
+        x_first = pixel_centre(packed, start)
+        x_last = pixel_centre(packed, start + count - 1)
+        x_middle = pixel_centre(packed, start + middle)
         delta_c = (sc2 - sc0) / (x_last - x_first)
         delta_r = (sr2 - sr0) / (x_last - x_first)
         error = (abs((sc0 + delta_c * (x_middle - x_first)) - sc1)
                  + abs((sr0 + delta_r * (x_middle - x_first)) - sr1))
         if not error > threshold:   # GDAL's test (a NaN error interpolates)
             for k in range(count - 1, -1, -1):
-                distance = (start + k + 0.5) - x_first
+                distance = pixel_centre(packed, start + k) - x_first
                 cols[start + k] = sc0 + delta_c * distance
                 rows[start + k] = sr0 + delta_r * distance
             continue
@@ -316,11 +328,11 @@ def _approximate_row(packed, py, n, cols, rows):
         ac = ar = bc = br = cc = cr = 0.0
         failed = False
         if not exact_first:
-            ac, ar = to_source(packed, a + 0.5, py)
-            bc, br = to_source(packed, b + 0.5, py)
+            ac, ar = to_source(packed, pixel_centre(packed, a), py)
+            bc, br = to_source(packed, pixel_centre(packed, b), py)
             failed = not (_finite(ac, ar) and _finite(bc, br))
         if not exact_second and not failed:
-            cc, cr = to_source(packed, c + 0.5, py)
+            cc, cr = to_source(packed, pixel_centre(packed, c), py)
             failed = not _finite(cc, cr)
         if failed:
             # GDAL: both halves exact, the three known samples kept
