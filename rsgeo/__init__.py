@@ -13,7 +13,9 @@ One module per topic of the course:
 - :mod:`rsgeo.gcp` - GCP sets, their CRS and QGIS ``.points`` files (chapter 2);
 - :mod:`rsgeo.georef` - CRSs and datums (SAD69 -> SIRGAS 2000) through PROJ, and a complete
   georeferencing run, ``georeference`` (chapter 2b);
-- :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4);
+- :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4), with the models
+  evaluated inside the kernels (:mod:`rsgeo.transformer`, GDAL's thin-plate spline in
+  :mod:`rsgeo.thin_plate`) and scenes warped tile by tile (:mod:`rsgeo.tiling`);
 - :mod:`rsgeo.terrain` - relief displacement, RPCs fitted to a sensor, orthorectification with a
   DEM (chapter 4b);
 - :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
@@ -29,6 +31,11 @@ One module per topic of the course:
 
 import importlib
 import pkgutil
+
+from . import _numba_cache
+
+# before any compiled module is imported: Numba's cache must not outlive a changed callee
+_numba_cache.refresh()
 
 __version__ = "0.1.0"
 
