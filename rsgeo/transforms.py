@@ -23,17 +23,22 @@ Image coordinates follow GDAL: (col, row) = (pixel, line), continuous, with the 
 corner at (0, 0).
 """
 
+import importlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from math import comb
 
 import numpy as np
 
-from . import thin_plate
 from ._checks import as_integer, as_number, as_points
 from ._i18n import _
 from .errors import GCPError, ModelError
-from .transformer import polynomial_many, polynomial_parameters
+
+
+def _compiled(name):
+    """One of rsgeo's compiled modules (Numba), imported when a model is first evaluated, so
+    that reading GCPs (rsgeo.gcp, rsgeo.data) does not load the compiler."""
+    return importlib.import_module(f"rsgeo.{name}")
 
 __all__ = [
     "GEOREFERENCER_MODELS",
@@ -548,7 +553,8 @@ class PolynomialModel(GeometricModel):
 
     def __call__(self, points):
         # one evaluation for every caller: the same compiled code the warp kernels run
-        return polynomial_many(self.kernel_form()[1], as_points(points))
+        return _compiled("transformer").polynomial_many(self.kernel_form()[1],
+                                                          as_points(points))
 
     def kernel_form(self):
         """The model packed for the warp kernels (see :mod:`rsgeo.transformer`).
@@ -558,8 +564,8 @@ class PolynomialModel(GeometricModel):
         (str, ndarray)
             ``("polynomial", parameters)``.
         """
-        return "polynomial", polynomial_parameters(self.order, self.origin, self.scale,
-                                                   self._scaled_coefficients())
+        return "polynomial", _compiled("transformer").polynomial_parameters(
+            self.order, self.origin, self.scale, self._scaled_coefficients())
 
     def _scaled_coefficients(self):
         return self.coefficients * self.scale**_powers(self.coefficients.shape[1])
@@ -1092,7 +1098,7 @@ class TPSModel(GeometricModel):
         self.dst = np.array(dst, dtype=np.float64)
         self.skipped = tuple(skipped)
         self.n_parameters = n_parameters("tps", n_gcps=len(self.src))
-        self.packed = thin_plate.solve(self.src, self.dst)
+        self.packed = _compiled("thin_plate").solve(self.src, self.dst)
         self.packed.flags.writeable = False
         self._floor = None
 
@@ -1176,7 +1182,7 @@ class TPSModel(GeometricModel):
             columns.append((self(points + offset) - self(points - offset)) / (2 * h))
         return np.stack(columns, axis=-1)
 
-    def inverse(self, tolerance=1e-10, max_iterations=thin_plate.GDAL_STEPS):
+    def inverse(self, tolerance=1e-10, max_iterations=None):
         """The inverse (dst -> src), by GDAL's Newton's method on this spline.
 
         What gdalwarp computes for each output cell when the spline is fitted
@@ -1205,9 +1211,10 @@ class TPSModel(GeometricModel):
         tolerance : float
             Largest accepted ``|model(p) - q|`` where GDAL's own test fails,
             relative to the extent of ``dst``.
-        max_iterations : int
-            Newton steps at most, GDAL's (15 in GDAL) and again as many for
-            the points they leave short.
+        max_iterations : int, optional
+            Newton steps at most, GDAL's (by default its 15,
+            :data:`rsgeo.thin_plate.GDAL_STEPS`) and again as many for the
+            points they leave short.
 
         Returns
         -------
@@ -1223,6 +1230,8 @@ class TPSModel(GeometricModel):
         ValueError
             If ``tolerance`` is negative or ``max_iterations`` not an integer >= 0.
         """
+        if max_iterations is None:
+            max_iterations = _compiled("thin_plate").GDAL_STEPS
         return _TPSInverse(self, self.reverse(), tolerance, max_iterations)
 
     def evaluation_floor(self):
@@ -1249,7 +1258,7 @@ def _evaluate_tps(packed, points):
     """A packed spline (or GDAL's inversion of one) at (n, 2) points, compiled."""
     points = np.ascontiguousarray(as_points(points))
     out = np.empty_like(points)
-    thin_plate.evaluate_many(packed, points, out)
+    _compiled("thin_plate").evaluate_many(packed, points, out)
     return out
 
 
@@ -1257,7 +1266,8 @@ class _TPSInverse(InverseModel):
     """A :class:`TPSModel` inverted as GDAL's TPS transformer does (:meth:`TPSModel.inverse`)."""
 
     def __init__(self, forward, reverse, tolerance, max_iterations):
-        self.packed = thin_plate.pack_inverse(forward.packed, reverse.packed, max_iterations)
+        self.packed = _compiled("thin_plate").pack_inverse(forward.packed, reverse.packed,
+                                                            max_iterations)
         self.packed.flags.writeable = False
         self._tolerance = as_number(tolerance, "tolerance", low=0,
                                     why="relative to the dst extent")
@@ -1278,7 +1288,7 @@ class _TPSInverse(InverseModel):
         targets = np.ascontiguousarray(targets)
         points = np.empty_like(targets)
         converged = np.empty(len(targets), dtype=bool)
-        thin_plate.invert_many(self.packed, targets, points, converged)
+        _compiled("thin_plate").invert_many(self.packed, targets, points, converged)
         if not converged.all():
             # GDAL would keep its last step; go on from it with the full Jacobian at each step
             rest = ~converged
