@@ -45,12 +45,35 @@ GDAL's VRT warps do) and left at 0 by ``reproject``: about 0.5 % of the valid
 pixels of a uniform-noise image, each by 1 DN. GDAL 3.10 replaces a valid value
 that collides with the destination nodata inconsistently across its warp paths
 (GDAL issue 11711; changed in 3.11 by pull request 11713).
+
+How :func:`orthorectify` computes, strip of output rows by strip (GDAL's
+warper asks its transformer row by row): one compiled pass (Numba) gives
+each cell its longitude and latitude, its DEM height and its RPC position,
+the RPC over a whole row at a time in vector instructions (several cells per
+instruction, each cell's operations in GDAL's order, so the numbers do not
+change); on a grid in EPSG:4326, the RPC's own CRS and the usual orthoimage
+grid, the longitude and latitude come from the grid's geotransform, with no
+PROJ. PROJ, which cannot run compiled, transforms a projected grid's cells
+(and the DEM's, when the DEM is projected) strip by strip, through the very
+GDAL function rasterio calls (``OCTTransform``) on the arrays. Then
+:func:`rsgeo.resample.interpolate`. ``benchmarks/orthorectify.py`` times it
+against GDAL. Note that gdalwarp does not approximate RPC + DEM by default:
+given ``RPC_DEM`` its error threshold is 0 (exact) unless ``-et`` says
+otherwise.
 """
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
-from ._checks import as_bands_first, as_image, as_integer, as_output_shape, as_shape, check_choice
+from ._checks import (
+    as_bands_first,
+    as_image,
+    as_integer,
+    as_num_threads,
+    as_output_shape,
+    as_shape,
+    check_choice,
+)
 from ._i18n import _
 from .data import _as_affine
 from .errors import CRSError, DataError, GCPError, GridError, ImageError, ModelError, RsgeoError
@@ -212,14 +235,78 @@ def _terms(L, P, H):
                      P * H * H, L * L * H, P * P * H, H * H * H])
 
 
-def _evaluate(terms, coeffs):
-    """GDAL's SSE2 sum: even terms and odd terms accumulated apart, then added."""
-    even = np.zeros(terms.shape[1:])
-    odd = np.zeros(terms.shape[1:])
-    for i in range(0, 20, 2):
-        even = even + terms[i] * coeffs[i]
-        odd = odd + terms[i + 1] * coeffs[i + 1]
+# The packed RPC the compiled code reads (RPCModel._packed): 10 scalars, then 4 x 20
+# coefficients in GDAL's padfCoeffs order (LINE_NUM, LINE_DEN, SAMP_NUM, SAMP_DEN)
+_PACKED_SCALARS = (("LONG", "OFF"), ("LONG", "SCALE"), ("LAT", "OFF"), ("LAT", "SCALE"),
+                   ("HEIGHT", "OFF"), ("HEIGHT", "SCALE"), ("SAMP", "OFF"), ("SAMP", "SCALE"),
+                   ("LINE", "OFF"), ("LINE", "SCALE"))
+_RPC_PACKED_SIZE = 10 + 4 * 20
+
+
+@njit(cache=True, inline="always")
+def _rpc_sum(p, o, L, P, H, LP, LH, PH, LL, PP, HH):
+    """GDAL's RPCEvaluate of one cubic (coefficients p[o:o + 20]): the even terms and the odd
+    terms summed apart, in index order, then added (GDAL's two SSE2 lanes)."""
+    even = 0.0
+    odd = 0.0
+    even += 1.0 * p[o]
+    odd += L * p[o + 1]
+    even += P * p[o + 2]
+    odd += H * p[o + 3]
+    even += LP * p[o + 4]
+    odd += LH * p[o + 5]
+    even += PH * p[o + 6]
+    odd += LL * p[o + 7]
+    even += PP * p[o + 8]
+    odd += HH * p[o + 9]
+    # the cubic terms as RPCComputeTerms multiplies them, left to right: L * P * H is
+    # (L * P) * H = LP * H, and so on
+    even += LP * H * p[o + 10]
+    odd += LL * L * p[o + 11]
+    even += LP * P * p[o + 12]
+    odd += LH * H * p[o + 13]
+    even += LL * P * p[o + 14]
+    odd += PP * P * p[o + 15]
+    even += PH * H * p[o + 16]
+    odd += LL * H * p[o + 17]
+    even += PP * H * p[o + 18]
+    odd += HH * H * p[o + 19]
     return even + odd
+
+
+@njit(cache=True, inline="always")
+def _rpc_point(p, o, lon, lat, height):
+    """GDAL's RPCTransformPoint: (col, row) of one ground point, the packed RPC at p[o:]."""
+    diff = lon - p[o]
+    if diff < -270:                   # GDAL's dateline fold
+        diff += 360
+    elif diff > 270:
+        diff -= 360
+    L = diff / p[o + 1]
+    P = (lat - p[o + 2]) / p[o + 3]
+    H = (height - p[o + 4]) / p[o + 5]
+    LP = L * P
+    LH = L * H
+    PH = P * H
+    LL = L * L
+    PP = P * P
+    HH = H * H
+    line_num = _rpc_sum(p, o + 10, L, P, H, LP, LH, PH, LL, PP, HH)
+    line_den = _rpc_sum(p, o + 30, L, P, H, LP, LH, PH, LL, PP, HH)
+    samp_num = _rpc_sum(p, o + 50, L, P, H, LP, LH, PH, LL, PP, HH)
+    samp_den = _rpc_sum(p, o + 70, L, P, H, LP, LH, PH, LL, PP, HH)
+    # RPC line and sample count from the first pixel's centre, GDAL from its corner: + 0.5
+    col = samp_num / samp_den * p[o + 7] + p[o + 6] + 0.5
+    row = line_num / line_den * p[o + 9] + p[o + 8] + 0.5
+    return col, row
+
+
+@njit(cache=True, error_model="numpy")
+def _project_points(p, lon, lat, height, cols, rows):
+    """_rpc_point for every point of 1-D arrays, into cols and rows (in vector instructions:
+    error_model="numpy" lets a division by zero give infinity, as in GDAL's C)."""
+    for k in range(lon.size):
+        cols[k], rows[k] = _rpc_point(p, 0, lon[k], lat[k], height[k])
 
 
 class RPCModel:
@@ -440,13 +527,22 @@ class RPCModel:
         >>> float(col), float(row)
         (500.5, 500.5)
         """
-        L, P, H = self.normalise(lon, lat, height)
-        terms = _terms(L, P, H)
-        col = (_evaluate(terms, self.samp_num) / _evaluate(terms, self.samp_den)
-               * self.scales["SAMP"] + self.offsets["SAMP"] + 0.5)
-        row = (_evaluate(terms, self.line_num) / _evaluate(terms, self.line_den)
-               * self.scales["LINE"] + self.offsets["LINE"] + 0.5)
-        return col, row
+        lon, lat, height = _lon_lat_height(lon, lat, height)
+        shape = lon.shape
+        cols, rows = np.empty(lon.size), np.empty(lon.size)
+        # one compiled pass, point by point (no array per term), GDAL's operations in order
+        _project_points(self._packed(), np.ravel(lon), np.ravel(lat), np.ravel(height), cols,
+                        rows)
+        if not shape:
+            return cols[0], rows[0]           # NumPy scalars for scalars, as before
+        return cols.reshape(shape), rows.reshape(shape)
+
+    def _packed(self):
+        """The model as the float64 array that the compiled code reads (_RPC_PACKED_SIZE)."""
+        scalars = [(self.offsets if part == "OFF" else self.scales)[kind]
+                   for kind, part in _PACKED_SCALARS]
+        return np.concatenate([scalars, self.line_num, self.line_den, self.samp_num,
+                               self.samp_den]).astype(np.float64)
 
     def localize(self, col, row, height, tolerance=1e-8, max_iterations=30):
         """Ground position (lon, lat) of image points at a given height: the RPC's inverse.
@@ -675,35 +771,117 @@ def _as_gdal(transform, name):
     return np.array(_as_affine(transform, name).to_gdal(), dtype=np.float64)
 
 
+@njit(cache=True, inline="always")
+def _dem_height_at(dem, inverse, x, y):
+    """GDALRPCGetDEMHeight, bilinear with the nearest fallback, at one map point: (height,
+    whether the point is outside the DEM). NaN for a point outside or over a hole."""
+    rows, cols = dem.shape
+    px = inverse[0] + x * inverse[1] + y * inverse[2]
+    py = inverse[3] + x * inverse[4] + y * inverse[5]
+    # GDAL's test for the nearest fallback, px > -1, py > -1, int(px) < cols and int(py) <
+    # rows, asked before any conversion to int (the same for finite values; NaN, infinity and
+    # huge values then never reach an index)
+    if not (px > -1.0 and py > -1.0 and px < cols and py < rows):
+        return np.nan, True
+    fx = px - 0.5
+    fy = py - 0.5
+    ix = int(fx)                      # C's static_cast<int>: toward zero
+    iy = int(fy)
+    if ix >= 0 and iy >= 0 and ix + 2 <= cols and iy + 2 <= rows:
+        dx = fx - ix
+        dy = fy - iy
+        dx1 = 1.0 - dx
+        dy1 = 1.0 - dy
+        z1 = dem[iy, ix] * dx1 + dem[iy, ix + 1] * dx
+        z2 = dem[iy + 1, ix] * dx1 + dem[iy + 1, ix + 1] * dx
+        return z1 * dy1 + z2 * dy, False
+    return dem[int(py), int(px)], False
+
+
 @njit(cache=True)
 def _dem_heights(dem, inverse, x, y, out):
-    """GDALRPCGetDEMHeight (bilinear, nearest fallback) at map points; 0 where outside.
+    """_dem_height_at at every point of 1-D arrays, into ``out``.
 
     Returns the number of points outside the DEM (their ``out`` is NaN).
     """
-    rows, cols = dem.shape
     outside = 0
     for k in range(x.size):
-        px = inverse[0] + x[k] * inverse[1] + y[k] * inverse[2]
-        py = inverse[3] + x[k] * inverse[4] + y[k] * inverse[5]
-        fx = px - 0.5
-        fy = py - 0.5
-        ix = int(fx)                      # C's static_cast<int>: toward zero
-        iy = int(fy)
-        if ix >= 0 and iy >= 0 and ix + 2 <= cols and iy + 2 <= rows:
-            dx = fx - ix
-            dy = fy - iy
-            dx1 = 1.0 - dx
-            dy1 = 1.0 - dy
-            z1 = dem[iy, ix] * dx1 + dem[iy, ix + 1] * dx
-            z2 = dem[iy + 1, ix] * dx1 + dem[iy + 1, ix + 1] * dx
-            out[k] = z1 * dy1 + z2 * dy
-        elif px > -1.0 and py > -1.0 and int(px) < cols and int(py) < rows:
-            out[k] = dem[int(py), int(px)]
-        else:
-            out[k] = np.nan
-            outside += 1
+        out[k], is_outside = _dem_height_at(dem, inverse, x[k], y[k])
+        outside += is_outside
     return outside
+
+
+# the columns of _ortho_positions' per-row counts
+_OUTSIDE_DEM, _OVER_HOLE, _BAD_LON_LAT, _SEES_IMAGE = range(4)
+
+
+@njit(cache=True, parallel=True, error_model="numpy")
+def _ortho_positions(dst_gt, first_row, width, lon, lat, dem_x, dem_y, dem, inverse, rpc,
+                     image_width, image_height, cols, rows, counts):
+    """One strip of orthorectify in one compiled pass: each cell's DEM height and RPC position.
+
+    Cell (i, j) of the strip (output row ``first_row + i``) is at flat index
+    ``i * width + j``. Its longitude and latitude are ``lon``, ``lat`` (PROJ's, for a
+    projected grid) or, when they are empty, its centre through ``dst_gt`` (a grid in
+    EPSG:4326, as GDAL's GenImgProjTransform computes it); the DEM is sampled at ``dem_x``,
+    ``dem_y`` (a DEM in another CRS) or, when empty, at the longitude and latitude. The RPC's
+    (col, row) go to ``cols``, ``rows``. ``counts[i]`` gets row i's cells outside the DEM,
+    over a DEM hole, with a longitude or latitude out of range (their position is set to
+    (-1, -1), outside the image), and whose position falls inside the image.
+
+    Each row goes in passes: coordinates, heights (the DEM's branches), then the RPC over the
+    whole row, a loop without branches that the compiler turns into vector instructions
+    (several cells per instruction, each cell's operations unchanged: error_model="numpy"
+    lets a division by zero give infinity, as in C, instead of testing every division).
+    """
+    n_rows = counts.shape[0]
+    geographic_grid = lon.size == 0
+    dem_on_lon_lat = dem_x.size == 0
+    for i in prange(n_rows):
+        # the row's views, indexed from 0 (an index known not to be negative spares Numba's
+        # wrap-around test, which kept the RPC's loop from vector instructions)
+        first, stop = i * width, (i + 1) * width
+        row_cols = cols[first:stop]
+        row_rows = rows[first:stop]
+        heights = np.empty(width)
+        # the cells' longitude and latitude, held in cols and rows until the RPC replaces them
+        if geographic_grid:
+            centre_row = first_row + i + 0.5
+            for j in range(width):
+                centre_col = j + 0.5
+                row_cols[j] = dst_gt[0] + centre_col * dst_gt[1] + centre_row * dst_gt[2]
+                row_rows[j] = dst_gt[3] + centre_col * dst_gt[4] + centre_row * dst_gt[5]
+        else:
+            row_cols[:] = lon[first:stop]
+            row_rows[:] = lat[first:stop]
+        row_x = row_cols if dem_on_lon_lat else dem_x[first:stop]
+        row_y = row_rows if dem_on_lon_lat else dem_y[first:stop]
+        outside = 0
+        holed = 0
+        bad = 0
+        for j in range(width):
+            height, is_outside = _dem_height_at(dem, inverse, row_x[j], row_y[j])
+            if is_outside:
+                outside += 1
+            elif np.isnan(height):
+                holed += 1
+            elif not (-180.0 <= row_cols[j] <= 360.0 and -90.0 <= row_rows[j] <= 90.0):
+                bad += 1
+                height = np.nan
+            heights[j] = height
+        for j in range(width):
+            row_cols[j], row_rows[j] = _rpc_point(rpc, 0, row_cols[j], row_rows[j], heights[j])
+        seen = 0
+        for j in range(width):
+            if np.isnan(heights[j]):
+                row_cols[j] = -1.0
+                row_rows[j] = -1.0
+            elif 0.0 <= row_cols[j] < image_width and 0.0 <= row_rows[j] < image_height:
+                seen += 1
+        counts[i, _OUTSIDE_DEM] = outside
+        counts[i, _OVER_HOLE] = holed
+        counts[i, _BAD_LON_LAT] = bad
+        counts[i, _SEES_IMAGE] = seen
 
 
 def dem_height(dem, dem_transform, x, y, dem_nodata=None):
@@ -802,8 +980,9 @@ def _raise_dem_problems(prepared, outside, holed, n):
 
 
 def _outside_mask(shape, inverse, x, y):
-    px = inverse[0] + x * inverse[1] + y * inverse[2]
-    py = inverse[3] + x * inverse[4] + y * inverse[5]
+    with np.errstate(invalid="ignore", over="ignore"):   # infinite points: NaN, outside
+        px = inverse[0] + x * inverse[1] + y * inverse[2]
+        py = inverse[3] + x * inverse[4] + y * inverse[5]
     return ~((px > -1) & (py > -1) & (np.trunc(px) < shape[1]) & (np.trunc(py) < shape[0]))
 
 
@@ -823,19 +1002,231 @@ def _grid_centres(gt, shape, start=0, stop=None):
     return x, y
 
 
-def _to_crs(x, y, src, dst):
-    """Points from CRS src to dst with GDAL's PROJ (rasterio.warp.transform); None = EPSG:4326."""
+def _to_crs(x, y, src, dst, num_threads=1):
+    """Points from CRS src to dst with GDAL's PROJ (rasterio.warp.transform); None = EPSG:4326.
+
+    The same GDAL call (``OCTTransform``) straight on the arrays when it can be reached
+    (:func:`_gdal_transform`: a few times faster, and over ``num_threads`` threads), through
+    rasterio otherwise; the numbers are the same.
+    """
     src = src or "EPSG:4326"
     dst = dst or "EPSG:4326"
     if str(src) == str(dst):
         return x, y
-    from rasterio.warp import transform as warp_transform
+    flat_x = np.ascontiguousarray(np.ravel(x), dtype=np.float64)
+    flat_y = np.ascontiguousarray(np.ravel(y), dtype=np.float64)
+    done = _gdal_transform(src, dst, flat_x, flat_y, num_threads)
+    if done is None:
+        from rasterio.warp import transform as warp_transform
 
-    tx, ty = warp_transform(src, dst, np.ravel(x), np.ravel(y))
+        done = warp_transform(src, dst, flat_x, flat_y)
+    tx, ty = done
     return np.reshape(tx, np.shape(x)), np.reshape(ty, np.shape(y))
 
 
-# cells of one strip of orthorectify (about 450 bytes each while it is computed)
+# GDAL's C library as rasterio loaded it (ctypes.CDLL), False where it cannot be reached
+_GDAL = None
+# the sample of points checked against rasterio.warp.transform at every call
+_CHECKED_POINTS = 5
+# the most points given to one call of GDAL's OCTTransform
+_OCT_POINTS = 2 ** 24
+
+
+def _gdal_library():
+    """GDAL's C library, the very one rasterio uses, through ctypes; None if not found.
+
+    rasterio's ``warp.transform`` calls GDAL's ``OCTTransform`` too, but copies every
+    coordinate through a Python object each way (more than half of its time on a strip of
+    orthorectify); calling it on the arrays' memory gives the same numbers without that.
+    The library is found among those loaded into this process (Linux's /proc/self/maps);
+    anywhere else rasterio's path is used.
+    """
+    global _GDAL
+    if _GDAL is None:
+        _GDAL = False
+        try:
+            import ctypes
+
+            import rasterio._base  # noqa: F401  (loads GDAL's library)
+
+            with open("/proc/self/maps") as maps:
+                paths = {line.split()[-1] for line in maps
+                         if "/libgdal" in line and ".so" in line.split()[-1]}
+            if len(paths) != 1:
+                return None
+            library = ctypes.CDLL(paths.pop())
+            handle, text = ctypes.c_void_p, ctypes.c_char_p
+            doubles = ctypes.POINTER(ctypes.c_double)
+            for name, result, arguments in (
+                    ("OSRNewSpatialReference", handle, [text]),
+                    ("OSRSetAxisMappingStrategy", None, [handle, ctypes.c_int]),
+                    ("OSRDestroySpatialReference", None, [handle]),
+                    ("OCTNewCoordinateTransformation", handle, [handle, handle]),
+                    ("OCTDestroyCoordinateTransformation", None, [handle]),
+                    ("OCTTransform", ctypes.c_int, [handle, ctypes.c_int, doubles, doubles,
+                                                    doubles]),
+                    ("CPLPushErrorHandler", None, [handle]),
+                    ("CPLPopErrorHandler", None, [])):
+                function = getattr(library, name)
+                function.restype, function.argtypes = result, arguments
+            library.quiet = ctypes.cast(library.CPLQuietErrorHandler, handle)
+            library.doubles = doubles
+            _GDAL = library
+        except (OSError, AttributeError, ImportError):
+            pass
+    return _GDAL or None
+
+
+def _gdal_transform(src, dst, x, y, num_threads=1):
+    """(x, y) of contiguous float64 arrays through GDAL's OCTTransform, as rasterio's
+    ``warp.transform`` computes them; None when GDAL's library cannot be reached, a point
+    fails (rasterio then raises its error) or a sample of points differs from rasterio's.
+
+    With ``num_threads`` > 1 the points are shared among the calling thread and worker
+    threads that live as long as the process: each thread keeps its own transformations
+    (GDAL's cannot be shared between threads, and a new thread would set up PROJ anew).
+    """
+    library = _gdal_library()
+    if library is None or x.size == 0 or x.size != y.size:
+        return None
+    from rasterio.crs import CRS
+
+    wkts = tuple(CRS.from_user_input(crs).to_wkt().encode() for crs in (src, dst))
+    tx, ty = x.copy(), y.copy()
+    bounds = np.linspace(0, x.size, min(num_threads, x.size) + 1).astype(int)
+
+    def run(first, stop):
+        transformation = _thread_transformation(library, wkts)
+        if not transformation:
+            return False
+        # GDAL's error messages kept quiet: a failed point sends the strip to rasterio's path
+        library.CPLPushErrorHandler(library.quiet)
+        try:
+            # OCTTransform counts its points in a C int: calls of at most 2**24 points each
+            return all([library.OCTTransform(
+                transformation, int(min(part + _OCT_POINTS, stop) - part),
+                tx[part:stop].ctypes.data_as(library.doubles),
+                ty[part:stop].ctypes.data_as(library.doubles), None)
+                for part in range(int(first), int(stop), _OCT_POINTS)])
+        finally:
+            library.CPLPopErrorHandler()
+
+    if len(bounds) > 2:
+        others = _proj_workers().map(run, bounds[1:-1], bounds[2:])
+        succeeded = run(bounds[0], bounds[1])
+        succeeded = all(list(others)) and succeeded
+    else:
+        succeeded = run(0, x.size)
+    if not succeeded:
+        return None
+    from rasterio.warp import transform as warp_transform
+
+    sample = np.unique(np.linspace(0, x.size - 1, _CHECKED_POINTS).astype(int))
+    check_x, check_y = warp_transform(src, dst, x[sample], y[sample])
+    if not (np.array_equal(check_x, tx[sample]) and np.array_equal(check_y, ty[sample])):
+        return None
+    return tx, ty
+
+
+# each thread's GDAL transformations, by (source WKT, target WKT); the few most recent kept
+_THREAD_TRANSFORMATIONS = None
+_KEPT_TRANSFORMATIONS = 8
+_PROJ_WORKERS = None
+
+
+def _thread_transformation(library, wkts):
+    """This thread's GDAL coordinate transformation between two WKTs (0 if GDAL refuses)."""
+    global _THREAD_TRANSFORMATIONS
+    if _THREAD_TRANSFORMATIONS is None:
+        import threading
+
+        _THREAD_TRANSFORMATIONS = threading.local()
+    kept = getattr(_THREAD_TRANSFORMATIONS, "kept", None)
+    if kept is None:
+        kept = _THREAD_TRANSFORMATIONS.kept = {}
+    if wkts in kept:
+        kept[wkts] = kept.pop(wkts)                   # the most recent last
+        return kept[wkts][0]
+    spatial = [library.OSRNewSpatialReference(wkt) for wkt in wkts]
+    for reference in spatial:
+        library.OSRSetAxisMappingStrategy(reference, 0)       # x = longitude, as rasterio
+    library.CPLPushErrorHandler(library.quiet)
+    try:
+        transformation = library.OCTNewCoordinateTransformation(*spatial)
+    finally:
+        library.CPLPopErrorHandler()
+    kept[wkts] = (transformation, spatial)
+    while len(kept) > _KEPT_TRANSFORMATIONS:
+        oldest, old_spatial = kept.pop(next(iter(kept)))
+        if oldest:
+            library.OCTDestroyCoordinateTransformation(oldest)
+        for reference in old_spatial:
+            library.OSRDestroySpatialReference(reference)
+    return transformation
+
+
+def _proj_workers():
+    """The worker threads of _gdal_transform (as many as Numba may use, less the caller)."""
+    global _PROJ_WORKERS
+    if _PROJ_WORKERS is None:
+        from concurrent.futures import ThreadPoolExecutor
+
+        import numba
+
+        _PROJ_WORKERS = ThreadPoolExecutor(max(1, numba.config.NUMBA_NUM_THREADS - 1),
+                                           thread_name_prefix="rsgeo-proj")
+    return _PROJ_WORKERS
+
+
+def _is_lon_lat(crs):
+    """Whether a CRS is the RPC's own, EPSG:4326 (rsgeo's rule in _to_crs: no PROJ then)."""
+    return crs is None or str(crs) == "EPSG:4326"
+
+
+def _strip_coordinates(dst_gt, shape, start, stop, dst_crs, dem_crs, num_threads=1,
+                       every=False):
+    """Flat (lon, lat, dem_x, dem_y) of the cell centres of output rows start to stop.
+
+    lon and lat come from PROJ for a projected grid, dem_x and dem_y for a DEM outside
+    EPSG:4326; the others are empty (the compiled pass computes them from the grid), unless
+    ``every``: then all four are computed, in NumPy, as GDAL does.
+    """
+    geographic, dem_geographic = _is_lon_lat(dst_crs), _is_lon_lat(dem_crs)
+    lon = lat = dem_x = dem_y = _EMPTY
+    if every or not geographic or not dem_geographic:
+        x, y = (np.ravel(a) for a in np.broadcast_arrays(*_grid_centres(dst_gt, shape, start,
+                                                                         stop)))
+        lon, lat = _to_crs(x, y, dst_crs, "EPSG:4326", num_threads)
+    if every or not dem_geographic:
+        dem_x, dem_y = _to_crs(lon, lat, "EPSG:4326", dem_crs, num_threads)
+    if not every and geographic:
+        lon = lat = _EMPTY
+    return lon, lat, dem_x, dem_y
+
+
+_EMPTY = np.empty(0)
+
+
+class _numba_threads:
+    """``with _numba_threads(n):`` Numba's parallel loops use n threads inside, as before after."""
+
+    def __init__(self, count):
+        self.count = count
+
+    def __enter__(self):
+        import numba
+
+        self.previous = numba.get_num_threads()
+        numba.set_num_threads(self.count)
+
+    def __exit__(self, *exc):
+        import numba
+
+        numba.set_num_threads(self.previous)
+
+
+# cells of one strip of orthorectify: 16 bytes each while it is computed (its source positions)
+# on a grid in EPSG:4326, up to about 100 with PROJ's coordinates for a projected grid and DEM
 _STRIP_CELLS = 2 ** 19
 
 
@@ -880,12 +1271,16 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     dem_nodata : float, optional
         DEM value marking holes, besides NaN.
     num_threads : int
-        Threads for the interpolation.
+        Threads for the compiled passes (DEM heights and RPC, interpolation)
+        and for PROJ. The result does not depend on it.
     strip_rows : int, optional
         Output rows computed at a time (as :func:`rsgeo.resample.warp`):
-        memory is the output plus about 450 bytes per cell of one strip. By
-        default about 2**19 cells a strip (256 rows of a 2048-wide grid:
-        some 240 MB). The result does not depend on it.
+        memory is the output plus one strip's working arrays, about 16
+        bytes per cell with the grid and the DEM in EPSG:4326 (the source
+        positions) and up to about 100 with PROJ's coordinates of a
+        projected grid and DEM. By default about 2**19 cells a strip (256
+        rows of a 2048-wide grid: 8 to 50 MB). The result does not depend
+        on it.
 
     Returns
     -------
@@ -937,29 +1332,50 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     dem_crs = as_crs("EPSG:4326" if dem_crs is None else dem_crs, "dem_crs")
     prepared = _prepare_dem(dem, dem_transform, dem_nodata)
     height, width = image.shape[-2:]
+    num_threads = as_num_threads(num_threads)
     out = np.empty((bands,) + shape, dtype=image.dtype)
     outside, holed = [0, 0.0, 0.0], [0, 0.0, 0.0]
     seen = False
+    packed = rpc._packed()
+    dem_work, dem_inverse = prepared[:2]
+    strip_cells = min(strip_rows, shape[0]) * shape[1]
+    cols, rows = np.empty(strip_cells), np.empty(strip_cells)
+    counts = np.empty((min(strip_rows, shape[0]), 4), dtype=np.int64)
     # in strips of rows, as rsgeo.resample.warp: memory is the output plus one strip's
     # positions (each cell is computed alone, so the pixels do not depend on the strips)
     for start in range(0, shape[0], strip_rows):
         stop = min(start + strip_rows, shape[0])
-        x, y = _grid_centres(dst_gt, shape, start, stop)
-        x, y = np.broadcast_arrays(x, y)
-        lon, lat = _to_crs(x, y, dst_crs, "EPSG:4326")
-        dem_x, dem_y = _to_crs(lon, lat, "EPSG:4326", dem_crs)
-        heights, strip_outside, strip_holed = _sample_dem(prepared, dem_x, dem_y)
-        for total, found in ((outside, strip_outside), (holed, strip_holed)):
-            if found[0] and not total[0]:
-                total[1:] = found[1:]
-            total[0] += found[0]
+        cells = (stop - start) * shape[1]
+        # PROJ where a CRS is not the RPC's (it cannot run compiled), vectorised over the strip;
+        # empty arrays tell the compiled pass to take the grid's or the DEM's own coordinates
+        lon, lat, dem_x, dem_y = _strip_coordinates(dst_gt, shape, start, stop, dst_crs,
+                                                    dem_crs, num_threads)
+        with _numba_threads(num_threads):
+            _ortho_positions(dst_gt, start, shape[1], lon, lat, dem_x, dem_y, dem_work,
+                             dem_inverse, packed, width, height, cols, rows,
+                             counts[:stop - start])
+        found = counts[:stop - start].sum(axis=0)
+        if found[_OUTSIDE_DEM] or found[_OVER_HOLE]:
+            # the NumPy path of dem_height over this strip, for the messages' counts and
+            # first points
+            lon, lat, dem_x, dem_y = _strip_coordinates(dst_gt, shape, start, stop, dst_crs,
+                                                        dem_crs, every=True)
+            _heights, strip_outside, strip_holed = _sample_dem(prepared, dem_x, dem_y)
+            for total, strip in ((outside, strip_outside), (holed, strip_holed)):
+                if strip[0] and not total[0]:
+                    total[1:] = strip[1:]
+                total[0] += strip[0]
         if outside[0] or holed[0]:
             continue                      # counted over the whole grid, then refused below
-        cols, rows = rpc.project(lon, lat, heights)
-        seen = seen or bool(np.any((cols >= 0) & (cols < width) & (rows >= 0) & (rows < height)))
-        out[:, start:stop] = interpolate(image, cols, rows, method, nodata=nodata,
-                                         num_threads=num_threads).reshape(bands, stop - start,
-                                                                          shape[1])
+        if found[_BAD_LON_LAT]:
+            lon, lat, _dem_x, _dem_y = _strip_coordinates(dst_gt, shape, start, stop, dst_crs,
+                                                          dem_crs, every=True)
+            _lon_lat_height(lon, lat, 0.0)        # raises, naming the values out of range
+        seen = seen or bool(found[_SEES_IMAGE])
+        strip_shape = (stop - start, shape[1])
+        out[:, start:stop] = interpolate(
+            image, cols[:cells].reshape(strip_shape), rows[:cells].reshape(strip_shape),
+            method, nodata=nodata, num_threads=num_threads).reshape((bands,) + strip_shape)
     _raise_dem_problems(prepared, outside, holed, shape[0] * shape[1])
     if not seen:
         raise GridError(f"no output cell sees the image ({height} x {width} px): the grid is "

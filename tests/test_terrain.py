@@ -481,3 +481,145 @@ def test_orthorectify_strips_count_dem_problems_over_the_whole_grid(scene):
     for bad, kind in [(0, ValueError), (2.5, ValueError), ("10", TypeError)]:
         with pytest.raises(kind, match="strip_rows"):
             orthorectify(image, rpc, dem, dem_gt, grid, (40, 40), strip_rows=bad)
+
+
+# -- issue 27: the RPC and the DEM in one compiled pass, PROJ on the arrays --------------------
+
+def _rpc_in_numpy(rpc, lon, lat, height):
+    """GDAL's RPCTransformPoint written out in NumPy, operation by operation (the reference
+    of the compiled evaluation: the 20 terms, even and odd sums apart, then their sum)."""
+    L, P, H = rpc.normalise(lon, lat, height)
+    terms = [np.ones_like(L), L, P, H, L * P, L * H, P * H, L * L, P * P, H * H, L * P * H,
+             L * L * L, L * P * P, L * H * H, L * L * P, P * P * P, P * H * H, L * L * H,
+             P * P * H, H * H * H]
+
+    def cubic(coefficients):
+        even, odd = np.zeros_like(L), np.zeros_like(L)
+        for i in range(0, 20, 2):
+            even = even + terms[i] * coefficients[i]
+            odd = odd + terms[i + 1] * coefficients[i + 1]
+        return even + odd
+
+    with np.errstate(divide="ignore", invalid="ignore"):
+        col = (cubic(rpc.samp_num) / cubic(rpc.samp_den) * rpc.scales["SAMP"]
+               + rpc.offsets["SAMP"] + 0.5)
+        row = (cubic(rpc.line_num) / cubic(rpc.line_den) * rpc.scales["LINE"]
+               + rpc.offsets["LINE"] + 0.5)
+    return col, row
+
+
+def test_compiled_project_is_gdal_to_the_last_bit_across_the_dateline(scene):
+    from rasterio.transform import RPCTransformer, TransformDirection
+
+    _, rpc, *_ = scene
+    lon, lat, h = random_ground(7, 5000)
+    np.testing.assert_array_equal(rpc.project(lon, lat, h), _rpc_in_numpy(rpc, lon, lat, h))
+    with RPCTransformer(rpc.to_rasterio()) as transformer:
+        gdal = transformer._transform(lon, lat, h, transform_direction=TransformDirection.reverse)
+    np.testing.assert_array_equal(rpc.project(lon, lat, h), np.asarray(gdal))
+    # the same model moved to the dateline: -179.99 is 0.02 degree east of 179.97 (GDAL folds
+    # differences beyond +-270 degrees by 360)
+    moved = RPCModel(dict(rpc.offsets, LONG=179.97), rpc.scales, rpc.line_num, rpc.line_den,
+                     rpc.samp_num, rpc.samp_den)
+    across = np.where(lon > LON0, lon - LON0 - 180.0 + 0.02, lon - LON0 + 179.97)
+    assert (across < -179).any() and (across > 179).any()
+    ours = moved.project(across, lat, h)
+    np.testing.assert_array_equal(ours, _rpc_in_numpy(moved, across, lat, h))
+    with RPCTransformer(moved.to_rasterio()) as transformer:
+        gdal = transformer._transform(across, lat, h,
+                                      transform_direction=TransformDirection.reverse)
+    np.testing.assert_array_equal(ours, np.asarray(gdal))
+    # shapes: scalars give NumPy scalars, arrays broadcast
+    col, row = rpc.project(LON0, LAT0, 0.0)
+    assert isinstance(col, np.float64) and isinstance(row, np.float64)
+    assert rpc.project(np.full((2, 3), LON0), LAT0, [0.0, 1.0, 2.0])[0].shape == (2, 3)
+
+
+def test_a_zero_denominator_gives_infinity_as_in_c_not_an_exception():
+    mapping = simple_rpc_dict()
+    mapping["SAMP_DEN_COEFF"] = [0.0] * 20
+    col, row = RPCModel.from_dict(mapping).project(-34.88, -8.0, 0.0)
+    assert np.isinf(col) and row == RPCModel.from_dict(simple_rpc_dict()).project(
+        -34.88, -8.0, 0.0)[1]
+
+
+@pytest.mark.parametrize("x, y", [(np.inf, LAT0), (LON0, np.nan), (1e300, LAT0),
+                                  (LON0, -1e300)])
+def test_dem_height_calls_non_finite_and_huge_points_outside(x, y):
+    dem, dem_gt = synthetic_dem()
+    with pytest.raises(ValueError, match="DEM does not cover 1 of 1 points"):
+        dem_height(dem, dem_gt, x, y)
+
+
+def test_orthorectify_refuses_latitudes_beyond_the_pole_that_a_dem_covers(scene):
+    # a DEM whose geotransform runs past 90 degrees (numbers only) covers the grid; the grid's
+    # latitudes are still refused, as RPCModel.project refuses them
+    _, rpc, _dem, _dem_gt, image = scene
+    dem_gt = affine.Affine(0.1, 0, LON0 - 1, 0, -0.1, 95.0)      # 95 to 85 degrees
+    grid = affine.Affine(0.01, 0, LON0 - 0.1, 0, -0.01, 91.0)
+    with pytest.raises(ValueError, match=r"lat must be in \[-90, 90\] degrees, got 90.995"):
+        orthorectify(image, rpc, np.zeros((100, 30)), dem_gt, grid, (20, 20), "nearest")
+
+
+def test_orthorectify_does_not_depend_on_threads_or_on_reaching_gdal_directly(scene,
+                                                                               monkeypatch):
+    from rasterio.warp import transform
+
+    import rsgeo.terrain as terrain
+
+    _, rpc, dem, dem_gt, image = scene
+    x, y = transform("EPSG:4326", "EPSG:31985", [LON0], [LAT0])
+    utm = affine.Affine(30.0, 0, round(x[0]) - 4500, 0, -30.0, round(y[0]) + 4500)
+    lonlat = affine.Affine(0.0003, 0, LON0 - 0.045, 0, -0.0003, LAT0 + 0.045)
+    for grid, crs in ((lonlat, "EPSG:4326"), (utm, "EPSG:31985")):
+        one = orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
+                           dst_crs=crs, strip_rows=37)
+        two = orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
+                           dst_crs=crs, num_threads=2)
+        np.testing.assert_array_equal(one, two)
+        with monkeypatch.context() as patch:
+            patch.setattr(terrain, "_GDAL", False)   # PROJ through rasterio.warp.transform
+            np.testing.assert_array_equal(
+                orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
+                             dst_crs=crs), one)
+
+
+def test_proj_on_the_arrays_is_rasterio_warp_transform_to_the_last_bit(monkeypatch):
+    from rasterio.crs import CRS
+    from rasterio.warp import transform
+
+    import rsgeo.terrain as terrain
+
+    if terrain._gdal_library() is None:
+        pytest.skip("GDAL's library is not reachable here (not Linux): rasterio's path is used")
+    rng = np.random.default_rng(4)
+    lon, lat = rng.uniform(LON0 - 0.05, LON0 + 0.05, 10_001), rng.uniform(LAT0 - 0.05,
+                                                                         LAT0 + 0.05, 10_001)
+    src, dst = CRS.from_epsg(4326), CRS.from_epsg(31985)
+    for threads, calls_of in ((1, 2 ** 24), (2, 2 ** 24), (2, 999)):
+        monkeypatch.setattr(terrain, "_OCT_POINTS", calls_of)   # GDAL called in parts
+        x, y = terrain._gdal_transform(src, dst, lon, lat, threads)
+        np.testing.assert_array_equal(np.array([x, y]), np.array(transform(src, dst, lon, lat)))
+        back = terrain._gdal_transform(dst, src, x, y, threads)
+        np.testing.assert_array_equal(np.array(back), np.array(transform(dst, src, x, y)))
+    # a point PROJ cannot transform: rasterio's path, which raises as it always did
+    assert terrain._gdal_transform(dst, src, np.array([1e30, x[0]]), np.array([0.0, y[0]])) \
+        is None
+
+
+def test_orthorectify_grid_and_dem_in_utm_against_gdal(scene):
+    """Chapter 4b's case: the grid and the DEM in UTM 25S, PROJ twice per cell."""
+    from rasterio.warp import transform
+
+    _, rpc, dem, _dem_gt, image = scene
+    x, y = transform("EPSG:4326", "EPSG:31985", [LON0], [LAT0])
+    x0, y0 = round(x[0]), round(y[0])
+    dem_gt = affine.Affine(110.0, 0, x0 - 6600, 0, -110.0, y0 + 6600)   # 120 cells of 110 m
+    grid = affine.Affine(20.0, 0, x0 - 5000, 0, -20.0, y0 + 5000)
+    for method in ("nearest", "bilinear"):
+        ours = orthorectify(image, rpc, dem, dem_gt, grid, (500, 500), method, nodata=None,
+                            dst_crs="EPSG:31985", dem_crs="EPSG:31985")
+        gdal = gdal_ortho(image, rpc, dem, dem_gt, grid, (500, 500), method, None,
+                          dst_crs="EPSG:31985", dem_crs="EPSG:31985")
+        assert np.count_nonzero(ours) > 0.5 * ours.size
+        assert np.count_nonzero(ours != gdal) == 0
