@@ -5,6 +5,9 @@ message that names the argument, what was wrong with it and what is needed, so t
 sees the cause of an error at the line they wrote, not a traceback from deep inside NumPy.
 """
 
+import math
+import numbers
+
 import numpy as np
 
 from ._i18n import _
@@ -160,6 +163,8 @@ def as_nodata(nodata, dtype):
 
     Raises
     ------
+    TypeError
+        If ``nodata`` is not a real number (a bool, a string, a complex, an array).
     rsgeo.errors.ImageError
         If ``dtype`` is an integer type and ``nodata`` is not a finite whole
         number inside its range, or ``dtype`` is float32 and ``nodata`` is
@@ -176,15 +181,21 @@ def as_nodata(nodata, dtype):
     """
     if nodata is None:
         return None
+    if (np.ndim(nodata) != 0 or isinstance(nodata, (bool, np.bool_, str, bytes))
+            or not isinstance(nodata, (numbers.Real, np.integer, np.floating))):
+        raise TypeError(_("nodata must be a real number (or None for no nodata), got "
+                          "{value!r} of type {kind}").format(value=nodata,
+                                                            kind=type(nodata).__name__))
     dtype = np.dtype(dtype)
     if dtype.kind in "ui":
         info = np.iinfo(dtype)
-        if not (np.isfinite(nodata) and float(nodata).is_integer()
+        if not (math.isfinite(float(nodata)) and float(nodata).is_integer()
                 and info.min <= nodata <= info.max):
             raise ImageError(f"nodata={nodata!r} does not fit dtype {dtype} "
                              f"(needs an integer in [{info.min}, {info.max}])")
         return int(nodata)
-    if dtype == np.float32 and np.isfinite(nodata) and abs(nodata) > np.finfo(np.float32).max:
+    if (dtype == np.float32 and math.isfinite(float(nodata))
+            and abs(nodata) > np.finfo(np.float32).max):
         raise ImageError(f"nodata={nodata!r} does not fit dtype float32")
     return nodata
 

@@ -277,7 +277,8 @@ def read_points(path):
     number; rsgeo's rows count downwards, so row = -sourceY. ``enable`` is 1 or
     0 (true/false and yes/no in any case are read too). The extra columns
     ``id`` and ``note`` that :func:`write_points` adds (QGIS reads only the
-    first five columns) give the GCPs' ids and notes.
+    first five columns) give the GCPs' ids and notes as written, empty ones
+    included; a file without an ``id`` column numbers its GCPs "1", "2", ...
 
     Parameters
     ----------
@@ -305,7 +306,9 @@ def read_points(path):
     if "\0" in text:
         raise DataError(_("{path} is not a text .points file (it holds NUL bytes); give the "
                           "file QGIS's Georeferencer saved").format(path=path))
-    lines = text.splitlines()
+    # line breaks as QGIS and the csv module know them: not str.splitlines's extra Unicode
+    # separators (U+2028, U+0085, form feed ...), which an id or a note may hold
+    lines = [line.rstrip("\r\n") for line in io.StringIO(text, newline="")]
     crs = None
     if lines and lines[0].startswith("#CRS:"):
         crs = lines.pop(0)[len("#CRS:"):].strip() or None
@@ -331,7 +334,8 @@ def read_points(path):
             raise DataError(f"{path}, line {number}: coordinates must be numbers, got "
                             f"{dict(row)}") from None
         enabled.append(_as_enabled(row.get("enable"), path, number))
-        ids.append(row.get("id") or str(len(ids) + 1))
+        # an id column keeps what it holds, empty included; QGIS's files have none: 1, 2, ...
+        ids.append(str(len(ids) + 1) if row.get("id") is None else row["id"])
         notes.append(row.get("note") or "")
     if not map_xy:
         raise DataError(_("{path} has a header but no points: a .points file needs one line per "
@@ -340,14 +344,40 @@ def read_points(path):
                   notes=notes)
 
 
-def _check_not_package_data(path):
-    """Refuse to write inside rsgeo's shipped data folder."""
+def _check_writable(path):
+    """Refuse to write inside rsgeo's shipped data folder, or into a folder that does not exist."""
     folder = (Path(__file__).parent / "data").resolve()
     target = Path(path).resolve()
     if target == folder or folder in target.parents:
         raise DataError(_("{path} is inside rsgeo's own data folder ({folder}), whose files ship "
                           "with the package; write your .points file somewhere else").format(
                               path=path, folder=folder))
+    if not target.parent.is_dir():
+        # the words of rsgeo.data.save's refusal (one message to translate)
+        raise DataError(_(
+            "the folder of file {file!r} does not exist ({folder}); create it first, e.g. "
+            "Path({folder_text!r}).mkdir(parents=True)").format(
+                file=str(path), folder=str(target.parent), folder_text=str(Path(path).parent)))
+
+
+# one GCP per line: QGIS's Georeferencer (QgsGCPList::loadGcps) reads the file line by line and
+# calls a line of fewer than four fields malformed; read_points refuses NUL bytes
+_LINE_BREAKS = "\r\n\0"
+
+
+def _check_one_line(gcps):
+    """Refuse an empty GCPSet, and ids or notes that would break a GCP's line."""
+    if not len(gcps):
+        raise GCPError(_("gcps holds no GCP, and a .points file needs at least one: read_points "
+                         "refuses a file with a header and no points; add GCPs before writing"))
+    for name, texts in (("ids", gcps.ids), ("notes", gcps.notes)):
+        for index, text in enumerate(texts):
+            if any(character in _LINE_BREAKS for character in text):
+                raise GCPError(_(
+                    "{name}[{index}] is {text!r}, which holds a line break or a NUL character: "
+                    "a .points file holds one GCP per line, which QGIS's Georeferencer reads "
+                    "line by line; replace it (e.g. with a space) before writing").format(
+                        name=name, index=index, text=text[:60]))
 
 
 def write_points(path, gcps, model=None):
@@ -359,7 +389,9 @@ def write_points(path, gcps, model=None):
     line as one line (QGIS reads only that line). Ids and notes follow in two
     extra columns, ``id`` and ``note``: QGIS's reader
     (``QgsGCPList::loadGcps``) takes only the first five columns and ignores
-    them, :func:`read_points` reads them back.
+    them, :func:`read_points` reads them back, empty ones included. An id or
+    a note holding a comma or a quote is quoted as the :mod:`csv` module does;
+    one holding a line break is refused, since QGIS reads the file line by line.
 
     Parameters
     ----------
@@ -378,18 +410,22 @@ def write_points(path, gcps, model=None):
     TypeError
         If ``gcps`` is not a :class:`GCPSet`.
     GCPError
-        As :func:`rsgeo.accuracy.residuals`.
+        If ``gcps`` holds no GCP (:func:`read_points` refuses a file without
+        points), or an id or a note holds a line break (``"\\n"``, ``"\\r"``)
+        or a NUL character; as :func:`rsgeo.accuracy.residuals`.
     DataError
-        If ``path`` lies inside rsgeo's own data folder.
+        If ``path`` lies inside rsgeo's own data folder, or its folder does not
+        exist.
     """
     if not isinstance(gcps, GCPSet):
         raise TypeError(f"gcps must be a GCPSet (map_xy, image_xy, enabled), got "
                         f"{type(gcps).__name__}")
+    _check_one_line(gcps)
     if model is not None:
         dx, dy, distance = residuals(model, gcps.map_xy, gcps.image_xy)
     else:
         dx = dy = distance = np.zeros(len(gcps))
-    _check_not_package_data(path)
+    _check_writable(path)
     with open(path, "w", encoding="utf-8", newline="") as handle:
         if gcps.crs:
             # QGIS reads the CRS from the first line only: a multi-line WKT goes on one line
@@ -402,5 +438,4 @@ def write_points(path, gcps, model=None):
                       -gcps.image_xy[i, 1])
             writer.writerow([repr(float(v)) for v in values]
                             + [int(gcps.enabled[i]), repr(float(dx[i])), repr(float(-dy[i])),
-                               repr(float(distance[i])), gcps.ids[i],
-                               " ".join(gcps.notes[i].splitlines())])
+                               repr(float(distance[i])), gcps.ids[i], gcps.notes[i]])

@@ -89,10 +89,13 @@ def _pair(x_image, y_image):
     x = np.asarray(x_image)
     y = np.asarray(y_image)
     for name, values in (("x_image", x), ("y_image", y)):
-        if values.dtype.kind not in "buif":
+        # bool is refused as every image check of rsgeo does: a regression of a mask is a slip
+        if values.dtype.kind not in "uif":
             raise TypeError(_("{name} must hold real numbers (integers or floats), got dtype "
                               "{dtype}; for a complex image regress its real part, imaginary "
-                              "part or modulus (np.abs)").format(name=name, dtype=values.dtype))
+                              "part or modulus (np.abs); a bool array is a mask: regress the "
+                              "pixels it keeps, e.g. x_image[mask]").format(
+                                  name=name, dtype=values.dtype))
     if x.shape != y.shape:
         raise ImageError(f"x_image and y_image must cover the same pixels (same shape), "
                          f"got {x.shape} and {y.shape}; cut both to their overlap first")
@@ -172,7 +175,7 @@ def fit_gain_offset(x_image, y_image, smooth=None, method="ols"):
         regression possible), their spread overflows float64, or ``smooth``
         is given with a band stack (3-D: fit each band separately).
     TypeError
-        If either image holds complex (or non-numeric) values.
+        If either image holds complex, bool (a mask) or non-numeric values.
 
     Examples
     --------

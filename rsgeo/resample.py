@@ -518,7 +518,8 @@ def _resample(image, method, nodata, num_threads, cols, rows, packed, size, row_
         else:
             # GDAL's general path (GWKRealCase) with a destination nodata, and for the types
             # without a specialised no-mask kernel
-            masked = avoid or dtype.name not in _NO_MASK_TYPES
+            # the dtype computed in (float16 in float32, as warp converts it)
+            masked = avoid or work.name not in _NO_MASK_TYPES
             inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
                             packed, n_rows, row_length, out, fill, step, compare,
                             work.kind in "ui", low, high, masked, valid)

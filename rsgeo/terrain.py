@@ -933,6 +933,12 @@ def dem_height(dem, dem_transform, x, y, dem_nodata=None):
 
 def _prepare_dem(dem, dem_transform, dem_nodata):
     """(DEM with NaN holes, its inverse geotransform, its holes, its transform) for sampling."""
+    kind = np.asarray(dem).dtype.kind
+    if kind not in "uif":
+        raise ImageError(_(
+            "dem must hold real heights in metres (integers or floats), got dtype {dtype}; a "
+            "complex DEM has no height: give its real part (dem.real) if that is one").format(
+                dtype=np.asarray(dem).dtype))
     dem = np.asarray(dem, dtype=np.float64)
     if dem.ndim != 2 or min(dem.shape) < 1:
         raise ImageError(f"dem must be a 2-D (rows, cols) array of heights, got shape {dem.shape}")

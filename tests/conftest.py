@@ -20,7 +20,7 @@ MODULE_MARKERS = {
                   "test_readme", "test_i18n"},
     "browser": {"test_browser", "test_pdf"},
     "gdal": {"test_gcp", "test_georef", "test_resample", "test_terrain", "test_transforms",
-             "test_data", "test_gdal_autotest_warp"},
+             "test_data", "test_gdal_autotest_warp", "test_fuzz"},
 }
 
 

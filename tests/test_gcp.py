@@ -137,3 +137,42 @@ def test_gcpset_copies_the_arrays():
     assert gcps.map_xy[0].tolist() == [0.0, 0.0]
     with pytest.raises(TypeError, match="complex"):
         gcp.GCPSet(map_xy.astype(complex), map_xy)
+
+
+def test_empty_ids_commas_quotes_and_unicode_separators_round_trip(tmp_path):
+    # an id column keeps what it holds; U+2028, NEL and form feed are not line breaks in a .points
+    # file (QGIS reads it line by line at \n or \r\n), although str.splitlines splits at them
+    gcps = gcp.GCPSet([[0, 0], [1, 0], [0, 1]], [[0, 0], [1, 0], [0, 1]],
+                      ids=["", "a,b", "x\u2028y"], notes=['say "q"', "", " \x85\x0c "])
+    path = tmp_path / "texts.points"
+    gcp.write_points(path, gcps)
+    again = gcp.read_points(path)
+    assert again.ids == ["", "a,b", "x\u2028y"]
+    assert again.notes == ['say "q"', "", " \x85\x0c "]
+    # QGIS's files have no id column: their GCPs are numbered
+    path.write_text(GOOD)
+    assert gcp.read_points(path).ids == ["1", "2"]
+
+
+@pytest.mark.parametrize("ids, notes, message", [
+    (["1", "2\n"], None, r"ids\[1\] is '2\\n', which holds a line break"),
+    (None, ["", "a\rb"], r"notes\[1\] is 'a\\rb', which holds a line break"),
+    (None, ["\0", ""], r"notes\[0\] .* NUL"),
+])
+def test_line_breaks_in_ids_and_notes_are_refused(tmp_path, ids, notes, message):
+    # QgsGCPList::loadGcps reads one GCP per line and calls a short line malformed
+    gcps = gcp.GCPSet([[0, 0], [1, 0]], [[0, 0], [1, 0]], ids=ids, notes=notes)
+    path = tmp_path / "broken.points"
+    with pytest.raises(gcp.GCPError, match=message):
+        gcp.write_points(path, gcps)
+    assert not path.exists()
+
+
+def test_no_gcps_and_a_missing_folder_are_refused(tmp_path):
+    # read_points refuses a header-only file, so write_points does not write one
+    with pytest.raises(gcp.GCPError, match="holds no GCP.*at least one"):
+        gcp.write_points(tmp_path / "none.points", gcp.GCPSet(np.empty((0, 2)), np.empty((0, 2))))
+    assert not (tmp_path / "none.points").exists()
+    gcps = gcp.GCPSet([[0, 0], [1, 0]], [[0, 0], [1, 0]])
+    with pytest.raises(gcp.DataError, match=r"folder .* does not exist .*nowhere.*mkdir"):
+        gcp.write_points(tmp_path / "nowhere" / "g.points", gcps)

@@ -235,6 +235,16 @@ def test_fit_gain_offset_refuses_complex_images():
         radiometry.fit_gain_offset(x, (x + 1j).astype(np.complex64))
 
 
+def test_fit_gain_offset_refuses_a_mask():
+    # found by tests/test_fuzz.py: a bool array (a mask) was regressed as 0 and 1, where every
+    # other image check of rsgeo refuses bool
+    x = np.arange(100.0).reshape(10, 10)
+    with pytest.raises(TypeError, match="x_image must hold real numbers.*bool.*is a mask"):
+        radiometry.fit_gain_offset(x > 50, x)
+    with pytest.raises(TypeError, match="y_image must hold real numbers.*bool"):
+        radiometry.fit_gain_offset(x, x > 50)
+
+
 def test_fit_gain_offset_refuses_what_cannot_be_regressed():
     # issue 26: a constant image, no covariance or an overflowing spread gave gain NaN
     x = np.arange(100.0).reshape(10, 10)

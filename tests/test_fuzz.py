@@ -1,20 +1,21 @@
 """Hypothesis fuzzing of rsgeo's core verbs: a clear refusal or an answer a reference confirms.
 
-Work in progress (issue 26), not collected by pytest yet: one property hangs in datum_shift
-and some fail on cases issue 26 lists. Run it explicitly with
-``python -m pytest tests/fuzz_issue26.py -p no:xdist --hypothesis-show-statistics``.
-
 The property, for every verb (issue 26, "Errors are part of the API" in the design): a call
 either raises an :class:`rsgeo.errors.RsgeoError` or a ``TypeError`` *from rsgeo's own code*, or
 returns an answer that a reference confirms. Never an exception from inside NumPy, SciPy, Numba,
 rasterio or PROJ, and never an unconfirmed answer. The references:
 
 * ``interpolate`` and ``warp``: GDAL's warper through a VRT (``tests/gdal_reference.py``), pixel
-  for pixel (64-bit integers to GDAL's double precision);
-* ``orthorectify``: GDAL's RPC transformer with a DEM (``gdalwarp -rpc -to RPC_DEM=…``);
+  for pixel (64-bit integers to GDAL's double precision), but for AvoidNoData on floats (a valid
+  float equal to nodata moves to the next float up, as GDAL does since 3.11; the reference is
+  GDAL 3.10, which leaves it);
+* ``orthorectify``: GDAL's RPC transformer with a DEM (``gdalwarp -rpc -to RPC_DEM=…``), but for
+  rsgeo.terrain's one documented difference (a valid value equal to the nodata 0 is moved off
+  it, GDAL's AvoidNoData, which GDAL's ``reproject`` does not apply);
 * ``datum_shift``: PROJ through ``rasterio.warp.transform``;
-* ``fit_transform``: exact data (``model(src)`` gives ``dst``), and GDAL's TPS transformer for
-  ``"tps"``; ``refine_gcps``: GDAL's stopping rule and a refit on the kept GCPs;
+* ``fit_transform``: exact data (``model(src)`` gives ``dst``), GDAL's TPS transformer for
+  ``"tps"``, and for GCPs that disagree the least-squares fit (NumPy in float64, scikit-image's
+  projective estimate); ``refine_gcps``: GDAL's stopping rule and a refit on the kept GCPs;
 * ``fit_gain_offset``: NumPy in float64; ``apply_gain_offset``: exact rational arithmetic;
 * ``genetic_match``: the fitness recomputed and the certified optimum (``optimum_match``);
 * ``correlation_tiepoints``: images cut from one scene at a known shift;
@@ -22,9 +23,22 @@ rasterio or PROJ, and never an unconfirmed answer. The references:
 
 Inputs are drawn wide: NaN and infinities, empty and wrongly shaped arrays, every NumPy dtype
 (int8 … uint64, float16/32/64, bool, complex, big-endian), lists, strings for numbers,
-duplicated and collinear GCPs, huge and tiny values. Every example counts an outcome with
-``hypothesis.event`` (``pytest tests/test_fuzz.py --hypothesis-show-statistics`` prints them).
-Runs are derandomized (the same examples on every machine) and take well under a minute.
+duplicated and collinear GCPs, huge and tiny values; mostly one bad thing at a time, so that
+many examples reach an answer to confirm. Every example counts an outcome with
+``hypothesis.event``: ``python -m pytest tests/test_fuzz.py -p no:xdist
+--hypothesis-show-statistics`` prints them. Runs are derandomized (the same examples on every
+machine, no example database).
+
+The bugs in rsgeo that the fuzz found are explicit examples: those fixed (nodata's type, a
+complex DEM, float16's kernel) run as any example; the one left (``CENTRE_BUG``) is a strict
+``xfail`` test with the bug in its reason (once fixed it fails as "expected to fail" and the
+mark goes), and the comparison leaves its pixels out (counted by an event), so that the rest
+keeps being checked. ``datum_shift`` draws
+coordinates up to 1e7; 1e30 has its own test (PROJ did not return on it).
+
+Time: about 3 s with Numba's cache of rsgeo's kernels in place. The first run after a change to
+one of rsgeo's compiled modules (which empties that cache) first compiles the kernels for every
+dtype and method the examples reach, about 56 of them: some 7 minutes on a 2-core machine.
 """
 
 import math
@@ -39,7 +53,7 @@ import affine
 import numpy as np
 import pytest
 import rasterio
-from hypothesis import HealthCheck, Phase, event, given, settings
+from hypothesis import HealthCheck, Phase, event, example, given, settings
 from hypothesis import strategies as st
 
 import rsgeo
@@ -49,8 +63,6 @@ from rsgeo.resample import interpolate, warp
 
 import gdal_reference
 from gdal_reference import affine_source, gdal_warp
-
-pytestmark = pytest.mark.gdal
 
 FUZZ = settings(max_examples=60, deadline=None, derandomize=True, database=None,
                 suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
@@ -150,8 +162,13 @@ odd_numbers = st.one_of(
 
 
 def mostly(good, bad, weight=5):
-    """``good`` ``weight`` times out of ``weight + 1``: one bad thing at a time, not all."""
-    return st.integers(0, weight).flatmap(lambda pick: bad if pick == 0 else good)
+    """``good`` ``weight`` times out of ``weight + 1``: one bad thing at a time, not all.
+
+    Drawn with ``sampled_from``, which keeps these odds: Hypothesis draws ``integers(0, weight)``
+    at 0 about a third of the time, whatever ``weight``, so ``pick == 0`` would spoil far more
+    examples than meant."""
+    return st.sampled_from([False] * weight + [True]).flatmap(
+        lambda spoil: bad if spoil else good)
 
 
 def _values_for(dtype, rng, shape, extreme):
@@ -170,9 +187,22 @@ def _values_for(dtype, rng, shape, extreme):
         return (rng.normal(100, 30, shape) + 1j).astype(dtype)
     if extreme:
         finfo = np.finfo(dtype)
-        choices = np.array([finfo.max, -finfo.max, finfo.tiny, 0.0, np.nan, np.inf, 1.0])
+        # float16 with -inf is an explicit example (a bug this fuzz found, fixed)
+        infinity = np.nan if dtype == np.float16 else np.inf
+        choices = np.array([finfo.max, -finfo.max, finfo.tiny, 0.0, np.nan, infinity, 1.0])
         return choices[rng.integers(0, len(choices), shape)].astype(dtype)
     return rng.normal(100, 40, shape).astype(dtype)
+
+
+@st.composite
+def valid_images(draw, max_side=24, dtypes=INT_DTYPES + FLOAT_DTYPES):
+    """An image every verb must take: 2-D or a band stack, of a usual dtype, its values varied
+    or at the dtype's extremes."""
+    side = st.integers(2, max_side)
+    shape = draw(st.one_of(st.tuples(side, side), st.tuples(st.just(2), side, side)))
+    rng = np.random.default_rng(draw(st.integers(0, 2**16)))
+    return _values_for(draw(st.sampled_from(dtypes)), rng, shape,
+                       draw(st.sampled_from([False, False, True])))
 
 
 @st.composite
@@ -236,6 +266,20 @@ def _same_as_gdal(verb, got, image, dst_transform, shape, method, nodata):
     else:
         same = (got == expected) | (np.isnan(got) & np.isnan(expected)
                                     if got.dtype.kind == "f" else False)
+        known = _centre_bug_pixels(image, dst_transform, shape, method)
+        if known is not None:
+            # CENTRE_BUG, a known bug (test_known_bug_nan_or_inf_beside_aligned_centres): these
+            # pixels are left out, the others compared
+            event(f"{verb}: CENTRE_BUG pixels left out of the comparison")
+            same |= np.broadcast_to(known, same.shape)
+        if got.dtype.kind == "f" and nodata is not None and method != "nearest":
+            # AvoidNoData on floats: a valid value equal to nodata moves to the next float up
+            # in rsgeo (test_resample's convention, as GDAL warps since 3.11, OSGeo/gdal#11713);
+            # GDAL 3.10, the reference here, leaves it at nodata
+            moved = ~same & (expected == nodata) & (got == _moved_off_nodata(nodata, got.dtype))
+            if moved.any():
+                event(f"{verb}: answered with AvoidNoData on floats, which GDAL 3.10 lacks")
+            same |= moved
         bad = np.flatnonzero(~same.ravel())
     assert bad.size == 0, (
         f"{verb} differs from GDAL at {bad.size} of {got.size} pixels (first at flat index "
@@ -255,23 +299,108 @@ def grids(draw):
     return dst_transform, shape
 
 
+# a string, a bool and 2**64 are the explicit examples below (bugs the fuzz found, fixed)
 nodatas = mostly(st.sampled_from([0, None, 1]),
-                 st.sampled_from([255, -1, float("nan"), 1e40, 2**64, "0", True]), 3)
+                 st.sampled_from([255, -1, float("nan"), 1e40, 2.0**64]), 3)
+# found by this fuzz, fixed: as_nodata checked no type (nodata='0' or 2**64 for an integer
+# image raised NumPy's TypeError; '0' and True were taken as 0.0 and 1); now a TypeError or
+# an ImageError of rsgeo's
+NODATA_BUG_CASES = [(np.arange(-6, 6, dtype=np.int32).reshape(3, 4), nodata)
+                    for nodata in (2**64, "0", True)] + [
+                        (np.linspace(0, 1, 12).reshape(3, 4), nodata) for nodata in ("0", True)]
+
+
+# found by this fuzz, fixed: given a float16 image, interpolate took GDAL's masked cubic
+# kernel (chosen by the image's dtype, not the float32 it computes in), giving -inf or inf
+# beside a -inf where float32 (and GDAL) give NaN
+CENTRE_BUG = (
+    "known bug in rsgeo/resample.py: at an exact pixel centre (a grid aligned with the source) "
+    "bilinear and cubic weigh the neighbours by 0 and 0 x NaN or 0 x inf is NaN: a NaN or inf "
+    "pixel makes 3 (bilinear) or up to 15 (cubic) neighbours NaN, where GDAL gives each "
+    "pixel's own value")
+ONE_INFINITE_PIXEL = np.zeros((6, 6), dtype=np.float32)
+ONE_INFINITE_PIXEL[1, 1] = -np.inf
+ONE_NAN_PIXEL = np.where(ONE_INFINITE_PIXEL == 0, 0, np.nan).astype(np.float64)
+SHIFTED_GRID = (SOURCE_TRANSFORM @ affine.Affine.translation(0.3, 0.2), (6, 6))
+
+
+def float16_bug_example(**arguments):
+    """The float16 case beside a -inf (a bug this fuzz found, fixed) as an explicit example."""
+    return _example(True, image=ONE_INFINITE_PIXEL.astype(np.float16), grid=SHIFTED_GRID,
+                    method="cubic", nodata=None, **arguments)
+
+
+def _centre_bug_pixels(image, dst_transform, shape, method):
+    """CENTRE_BUG's output pixels: at an exact source pixel centre in both axes, with a NaN or
+    an infinity within two source pixels (of any band); None when there are none."""
+    if method not in ("bilinear", "cubic") or image.dtype.kind != "f":
+        return None
+    bands = image if image.ndim == 3 else image[np.newaxis]
+    non_finite = ~np.isfinite(bands.astype(np.float64)).all(axis=0)
+    cols, rows = _grid_positions(dst_transform, shape)
+    exact = (np.mod(cols, 1) == 0.5) & (np.mod(rows, 1) == 0.5)
+    if not (non_finite.any() and exact.any()):
+        return None
+    from scipy.ndimage import maximum_filter
+
+    near = maximum_filter(non_finite, size=5, mode="constant")
+    col, row = np.floor(cols).astype(np.int64), np.floor(rows).astype(np.int64)
+    inside = exact & (col >= 0) & (row >= 0) & (col < near.shape[1]) & (row < near.shape[0])
+    pixels = np.zeros(shape, dtype=bool)
+    pixels[inside] = near[row[inside], col[inside]]
+    return pixels if pixels.any() else None
+
+
+def _example(as_case, **arguments):
+    """An explicit example: of the test's arguments, or of its one argument ``case`` (a dict)."""
+    return example(case=arguments) if as_case else example(**arguments)
+
+
+def nodata_bug_examples(as_case=False, **arguments):
+    """The nodata cases this fuzz found refused badly (fixed) as explicit examples."""
+    def decorate(test):
+        for image, nodata in NODATA_BUG_CASES:
+            test = _example(as_case, image=image, nodata=nodata, **arguments)(test)
+        return test
+    return decorate
+
+
+def check_nodata_taken(verb, nodata):
+    """An answer took ``nodata``: it must be None or a number (not a bool, not a string)."""
+    assert nodata is None or (isinstance(nodata, (int, float)) and not isinstance(nodata, bool)), (
+        f"{verb} took nodata={nodata!r}")
 
 
 def _grid_positions(dst_transform, shape):
     rows, cols = np.mgrid[0:shape[0], 0:shape[1]] + 0.5
-    x, y = dst_transform * (cols, rows)
-    return ~SOURCE_TRANSFORM * (x, y)
+    x, y = dst_transform @ (cols, rows)
+    return ~SOURCE_TRANSFORM @ (x, y)
+
+
+POSITION_SPOILS = ["nan", "inf", "list", "strings", "shape", "empty", "1d", "complex", "int"]
+INTERPOLATE_SPOILS = ["image", "method", "nodata"] + POSITION_SPOILS
+
+
+@st.composite
+def interpolate_cases(draw):
+    """interpolate's arguments, all valid half the time, else one of them spoiled (or odd):
+    ``spoil`` names the positions' spoiling, if any."""
+    spoil = draw(st.sampled_from([None] * len(INTERPOLATE_SPOILS) + INTERPOLATE_SPOILS))
+    methods = ["nearest", "bilinear", "cubic", "average"]
+    return dict(
+        image=draw(images() if spoil == "image" else valid_images()), grid=draw(grids()),
+        method=draw(st.sampled_from(["lanczos", 3] if spoil == "method" else methods)),
+        nodata=draw(nodatas if spoil == "nodata" else st.sampled_from([0, None, 1])),
+        spoil=spoil if spoil in POSITION_SPOILS else None)
 
 
 @FUZZ_GDAL
-@given(image=images(), grid=grids(), method=st.sampled_from(["nearest", "bilinear", "cubic",
-                                                           "average"] * 3 + ["lanczos", 3]),
-       nodata=nodatas,
-       spoil=st.sampled_from([None] * 10 + ["nan", "inf", "list", "strings", "shape",
-                                              "empty", "1d", "complex", "int"]))
-def test_interpolate_refuses_or_matches_gdal(image, grid, method, nodata, spoil):
+@given(case=interpolate_cases())
+@nodata_bug_examples(as_case=True, grid=(SOURCE_TRANSFORM, (3, 4)), method="nearest", spoil=None)
+@float16_bug_example(spoil=None)
+def test_interpolate_refuses_or_matches_gdal(case):
+    image, grid, method, nodata, spoil = (case[name] for name in
+                                          ("image", "grid", "method", "nodata", "spoil"))
     dst_transform, shape = grid
     cols, rows = _grid_positions(dst_transform, shape)
     if spoil == "nan":
@@ -299,6 +428,7 @@ def test_interpolate_refuses_or_matches_gdal(image, grid, method, nodata, spoil)
     assert unchanged(before, image), "interpolate modified its input"
     if got is REFUSED:
         return
+    check_nodata_taken("interpolate", nodata)
     assert spoil not in ("nan", "inf", "strings", "shape", "complex"), (
         f"interpolate answered on spoiled positions ({spoil})")
     if spoil == "empty":
@@ -313,13 +443,8 @@ def test_interpolate_refuses_or_matches_gdal(image, grid, method, nodata, spoil)
         assert np.array_equal(got, again, equal_nan=True)
         confirmed("interpolate", "same as float positions")
         return
-    _same_as_gdal("interpolate", got, image, dst_transform, shape, method,
-                  _gdal_nodata(nodata, image.dtype))
+    _same_as_gdal("interpolate", got, image, dst_transform, shape, method, nodata)
     confirmed("interpolate")
-
-
-def _gdal_nodata(nodata, dtype):
-    return None if nodata is None else nodata
 
 
 @FUZZ_GDAL
@@ -330,6 +455,8 @@ def _gdal_nodata(nodata, dtype):
                            st.sampled_from(["gdal tuple", "none", "array", "nan affine"])),
        strip_rows=mostly(st.sampled_from([256, 1, 3]), odd_numbers),
        bad_transform=mostly(st.none(), st.sampled_from(["nan", "tuple"])))
+@nodata_bug_examples(grid=(SOURCE_TRANSFORM, (3, 4)), method="nearest", mapping_kind="affine",
+                     strip_rows=256, bad_transform=None)
 def test_warp_refuses_or_matches_gdal(image, grid, method, nodata, mapping_kind, strip_rows,
                                       bad_transform):
     dst_transform, shape = grid
@@ -339,7 +466,7 @@ def test_warp_refuses_or_matches_gdal(image, grid, method, nodata, mapping_kind,
     elif mapping_kind == "model":
         # map (x, y) -> source (col, row) as a fitted model (a callable, warped in strips)
         corners = np.array([[0, 0], [400, 0], [0, 300], [400, 300], [200, 150]], float)
-        map_xy = np.column_stack(SOURCE_TRANSFORM * (corners[:, 0], corners[:, 1]))
+        map_xy = np.column_stack(SOURCE_TRANSFORM @ (corners[:, 0], corners[:, 1]))
         mapping = transforms.fit_transform(map_xy, corners, "polynomial", 1)
     elif mapping_kind == "gdal tuple":
         mapping = inverse.to_gdal()
@@ -360,12 +487,31 @@ def test_warp_refuses_or_matches_gdal(image, grid, method, nodata, mapping_kind,
     assert unchanged(before, image), "warp modified its input"
     if got is REFUSED:
         return
+    check_nodata_taken("warp", nodata)
     assert mapping_kind in ("affine", "model", "gdal tuple"), f"warp took mapping {mapping!r}"
     assert bad_transform != "nan", "warp answered on a NaN transform"
     if bad_transform == "tuple" or mapping_kind == "gdal tuple":
         pytest.fail("warp read a 6-tuple without saying in which order (GDAL's or Affine's)")
     _same_as_gdal("warp", got, image, dst_transform, shape, method, nodata)
     confirmed("warp")
+
+
+@pytest.mark.parametrize("verb", ["interpolate", "warp"])
+@pytest.mark.parametrize("image, method", [(ONE_NAN_PIXEL, "bilinear"),
+                                           (ONE_INFINITE_PIXEL, "cubic")], ids=["nan", "inf"])
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=CENTRE_BUG)
+def test_known_bug_nan_or_inf_beside_aligned_centres(verb, image, method):
+    # the source's own grid: every output pixel is a source pixel's centre; GDAL copies them
+    shape = image.shape
+    if verb == "interpolate":
+        got = interpolate(image, *_grid_positions(SOURCE_TRANSFORM, shape), method, nodata=None)
+    else:
+        got = warp(image, ~SOURCE_TRANSFORM, shape, SOURCE_TRANSFORM, method=method,
+                   nodata=None)
+    expected = _gdal_reference(image, SOURCE_TRANSFORM, shape, method, None)
+    assert np.array_equal(expected, image, equal_nan=True)
+    assert np.array_equal(got, expected, equal_nan=True), (
+        f"{verb} makes {int(np.isnan(got).sum()) - int(np.isnan(expected).sum())} more NaN")
 
 
 # -- fit_transform and refine_gcps ----------------------------------------------------------------
@@ -468,6 +614,35 @@ def _tolerance(dst):
     return 1e-6 * spread + 1e-9 * float(np.abs(dst).max(initial=0.0)) + 1e-12
 
 
+def _least_squares_fit(kind, order, src, dst, model):
+    """The least-squares model of ``kind`` at ``src``: NumPy in float64 on centred, scaled
+    coordinates (the fitted values do not depend on them), scikit-image for "projective"."""
+    centred = src - src.mean(axis=0)
+    x, y = (centred / (np.abs(centred).max() or 1.0)).T
+    if kind == "polynomial":
+        design = np.column_stack([x ** (total - j) * y**j for total in range(order + 1)
+                                  for j in range(total + 1)])
+        return design @ np.linalg.lstsq(design, dst, rcond=None)[0]
+    if kind == "linear":
+        return np.column_stack([np.polyval(np.polyfit(v, dst[:, axis], 1), v)
+                                for axis, v in enumerate((x, y))])
+    if kind == "helmert":
+        # u = a x - b y + c and flip·v = b x + a y + d, with the handedness the model chose
+        flip = -1.0 if np.linalg.det(model.matrix[:2, :2]) < 0 else 1.0
+        one, zero = np.ones_like(x), np.zeros_like(x)
+        design = np.vstack([np.column_stack([x, -y, one, zero]),
+                            np.column_stack([y, x, zero, one])])
+        values = design @ np.linalg.lstsq(design, np.concatenate([dst[:, 0], flip * dst[:, 1]]),
+                                          rcond=None)[0]
+        return np.column_stack([values[:len(x)], flip * values[len(x):]])
+    from skimage.transform import ProjectiveTransform
+
+    assert kind == "projective", kind
+    reference = ProjectiveTransform.from_estimate(src, dst)
+    assert reference, f"scikit-image has no projective estimate here: {reference}"
+    return reference(src)
+
+
 def _gdal_tps(src, dst, points):
     from rasterio.control import GroundControlPoint
     from rasterio.transform import GCPTransformer
@@ -497,7 +672,9 @@ def test_fit_transform_refuses_or_reproduces_exact_gcps(data, kind_order, order_
     assert given_order is order or (type(given_order) is int and given_order == order), (
         f"fit_transform took order={given_order!r} for kind {kind!r}")
     src64, dst64 = np.array(src, dtype=np.float64), np.array(dst, dtype=np.float64)   # copies
-    assert "with another target" not in layout, (
+    # a spline passes through every GCP: two at (nearly) one place with different targets have
+    # no spline; least squares fits them as it fits any GCPs that disagree (their residuals)
+    assert "with another target" not in layout or kind != "tps", (
         f"fit_transform fitted {kind} to two GCPs at (nearly) one place with different targets")
     # the model copies its GCPs: editing the caller's arrays afterwards changes nothing
     predicted = np.asarray(model(src64), dtype=np.float64)
@@ -505,6 +682,14 @@ def test_fit_transform_refuses_or_reproduces_exact_gcps(data, kind_order, order_
         src += 1000.0
         assert np.array_equal(np.asarray(model(src64)), predicted), (
             "the model kept the caller's src by reference")
+    if "with another target" in layout:
+        expected = _least_squares_fit(kind, order, src64, dst64, model)
+        gap = np.abs(predicted - expected).max()
+        assert gap <= _tolerance(dst64), (
+            f"{kind} (order {order}) on {layout} GCPs differs from the least-squares fit by "
+            f"{gap:g} at the GCPs (tolerance {_tolerance(dst64):g})")
+        confirmed("fit_transform", f"{kind} least squares")
+        return
     error = np.abs(predicted - dst64).max(initial=0.0)
     assert error <= _tolerance(dst64), (
         f"{kind} (order {order}) on {layout} GCPs: model(src) misses dst by {error:g} "
@@ -518,6 +703,23 @@ def test_fit_transform_refuses_or_reproduces_exact_gcps(data, kind_order, order_
         confirmed("fit_transform", "GDAL TPS")
         return
     confirmed("fit_transform", kind)
+
+
+@pytest.mark.parametrize("kind_order", [choice for choice in KIND_CHOICES if choice[0] != "tps"])
+def test_least_squares_kinds_fit_gcps_that_disagree(kind_order):
+    # the property's "with another target" layouts, made sure of (the property draws them
+    # rarely): two GCPs at one place with targets 50 apart are fitted by least squares
+    kind, order = kind_order
+    rng = np.random.default_rng(4)
+    src = rng.uniform(0, 1000, (12, 2))
+    src[-1] = src[0]
+    dst = _true_model(kind, order, rng)(src)
+    dst[-1] += 50.0
+    model = transforms.fit_transform(src, dst, kind, order)
+    predicted = np.asarray(model(src))
+    assert np.abs(predicted - dst).max() > 1.0         # the disagreement is in the residuals
+    expected = _least_squares_fit(kind, order, src, dst, model)
+    assert np.abs(predicted - expected).max() <= _tolerance(dst)
 
 
 @FUZZ
@@ -556,16 +758,41 @@ def test_refine_gcps_refuses_or_stops_where_gdal_does(data, kind_order, toleranc
 
 # -- radiometry -----------------------------------------------------------------------------------
 
+GAIN_OFFSET_SPOILS = ["x dtype", "x values", "x shape", "constant y", "other shape", "nan",
+                      "huge", "list", "method", "smooth", "smooth on bands"]
+
+
 @st.composite
-def image_pairs(draw):
-    x = draw(images(max_side=12, dtypes=INT_DTYPES + FLOAT_DTYPES + ["complex128", "bool",
-                                                                      ">f8", ">i4"]))
-    relation = draw(mostly(st.sampled_from(["linear", "noise"]), st.sampled_from([
-        "constant y", "other shape", "nan", "huge", "list"]), 3))
+def gain_offset_cases(draw):
+    """(x, y, relation, method, smooth, spoil): valid half the time, else one thing spoiled.
+
+    Valid: x of an integer or float dtype (big-endian too), 2-D or a band stack, of varied
+    values (an integer dtype's extremes included), y a linear function of x, with or without
+    noise, whose gain is at least 0.05 from zero (a zero gain makes y constant: no regression).
+    """
+    spoil = draw(st.sampled_from([None] * len(GAIN_OFFSET_SPOILS) + GAIN_OFFSET_SPOILS))
     rng = np.random.default_rng(draw(st.integers(0, 2**16)))
-    gain, offset = draw(st.floats(-3, 3)), draw(st.floats(-100, 100))
+    if spoil == "x dtype":
+        dtype = draw(st.sampled_from(["complex128", "bool"]))
+    elif spoil == "x values":
+        dtype = draw(st.sampled_from(FLOAT_DTYPES + [">f8"]))
+    else:
+        dtype = draw(st.sampled_from(INT_DTYPES + FLOAT_DTYPES + [">f8", ">i4"]))
+    side = st.integers(2, 12)
+    if spoil == "x shape":
+        shape = draw(st.sampled_from([(0, 5), (1, 1), (1, 2), (5,), (3, 4, 5, 6)]))
+    elif spoil == "smooth on bands":
+        shape = (2, draw(side), draw(side))
+    else:
+        shape = draw(st.one_of(st.tuples(side, side), st.tuples(st.just(2), side, side)))
+    extreme = spoil == "x values" or (np.dtype(dtype).kind in "iu" and draw(st.booleans()))
+    x = _values_for(dtype, rng, shape, extreme)
+    relation = spoil if spoil in ("constant y", "other shape", "nan", "huge", "list") else \
+        draw(st.sampled_from(["linear", "noise"]))
+    gain = draw(st.sampled_from([-1.0, 1.0])) * draw(st.floats(0.05, 3))
+    offset = draw(st.floats(-100, 100))
     xf = x.astype(np.complex128 if x.dtype.kind == "c" else np.float64)
-    if relation == "linear":
+    if relation in ("linear", "list"):
         y = gain * xf + offset
     elif relation == "noise":
         y = gain * xf + offset + rng.normal(0, 5, x.shape)
@@ -577,11 +804,20 @@ def image_pairs(draw):
         y = gain * xf + offset
         if y.size:
             y.flat[0] = np.nan
-    elif relation == "huge":
-        y = xf * 1e300
     else:
-        y = (gain * xf + offset).tolist()
-    return x, y, relation
+        with np.errstate(over="ignore"):
+            y = xf * 1e300
+    if relation == "list":
+        y = y.tolist()
+    method = "OLS" if spoil == "method" else draw(st.sampled_from(
+        ["ols", "rma", "orthogonal", "theil_sen"]))
+    if spoil == "smooth":
+        smooth = draw(st.sampled_from([0, -1, 2.5, True, "3"]))
+    elif spoil == "smooth on bands" or x.ndim == 2:
+        smooth = draw(st.sampled_from([None, 3]) if spoil is None else st.just(3))
+    else:
+        smooth = None
+    return x, y, relation, method, smooth, spoil
 
 
 def _reference_fit(x, y, method):
@@ -600,11 +836,9 @@ def _reference_fit(x, y, method):
 
 
 @FUZZ
-@given(pair=image_pairs(),
-       method=mostly(st.sampled_from(["ols", "rma", "orthogonal", "theil_sen"]), st.just("OLS")),
-       smooth=mostly(st.sampled_from([None, 3]), st.sampled_from([0, -1, 2.5, True, "3"]), 3))
-def test_fit_gain_offset_refuses_or_matches_numpy_float64(pair, method, smooth):
-    x, y, relation = pair
+@given(case=gain_offset_cases())
+def test_fit_gain_offset_refuses_or_matches_numpy_float64(case):
+    x, y, relation, method, smooth, spoil = case
     fit = call("fit_gain_offset", radiometry.fit_gain_offset, x, y, smooth=smooth, method=method)
     if fit is REFUSED:
         return
@@ -613,6 +847,7 @@ def test_fit_gain_offset_refuses_or_matches_numpy_float64(pair, method, smooth):
     assert relation not in ("other shape", "nan"), f"fit_gain_offset answered on {relation}"
     assert smooth is None or (isinstance(smooth, int) and not isinstance(smooth, bool)
                               and smooth >= 1), f"fit_gain_offset took smooth={smooth!r}"
+    assert smooth is None or x.ndim == 2, "fit_gain_offset smoothed across a band stack"
     assert math.isfinite(fit.gain) and math.isfinite(fit.offset), (
         f"fit_gain_offset returned gain {fit.gain}, offset {fit.offset} ({relation}, {method})")
     y = np.asarray(y, dtype=np.float64)
@@ -623,7 +858,7 @@ def test_fit_gain_offset_refuses_or_matches_numpy_float64(pair, method, smooth):
     else:
         xs, ys = x.astype(np.float64), y
     if method == "theil_sen":
-        if relation == "linear":
+        if relation in ("linear", "list"):      # exact data: every pairwise slope is the gain
             np.testing.assert_allclose([fit.gain, fit.offset], _reference_fit(xs, ys, "ols"),
                                        rtol=1e-6, atol=1e-6)
         confirmed("fit_gain_offset", "theil-sen")
@@ -815,22 +1050,60 @@ def _gdal_ortho(image, rpc, dem, dem_gt, dst_gt, shape, method, nodata):
     return out
 
 
+ORTHO_SPOILS = ["image", "method", "nodata", "dem", "dem transform", "dst_crs", "rpc", "shape"]
+ORTHO_DTYPES = ["uint8", "int16", "uint16", "float32", "float64", "int64", ">i2", "float16"]
+
+
+@st.composite
+def ortho_cases(draw):
+    """orthorectify's arguments, all valid half the time, else one of them spoiled (or odd)."""
+    spoil = draw(st.sampled_from([None] * len(ORTHO_SPOILS) + ORTHO_SPOILS))
+
+    def pick(name, good, bad):
+        return draw(bad if spoil == name else good)
+
+    image = draw(images(max_side=40, dtypes=ORTHO_DTYPES + ["bool", "complex64"])
+                 if spoil == "image" else valid_images(max_side=40, dtypes=ORTHO_DTYPES))
+    return dict(
+        image=image,
+        method=pick("method", st.sampled_from(["nearest", "bilinear", "cubic"]),
+                    st.just("lanczos")),
+        # a string or a bool are explicit examples below (found by this fuzz, fixed)
+        nodata=pick("nodata", st.sampled_from([0, None]),
+                    st.sampled_from([255, float("nan"), -1, 1e40])),
+        # a complex DEM is the explicit example below (a known bug)
+        dem_kind=pick("dem", st.just("hills"), st.sampled_from(["nan hole", "too small", "list"])),
+        dem_transform_kind=pick("dem transform", st.just("affine"),
+                                st.sampled_from(["gdal tuple", "affine tuple"])),
+        dst_crs=pick("dst_crs", st.sampled_from([None, "EPSG:4326", 4326]),
+                     st.sampled_from(["EPSG:99999", "not a crs"])),
+        rpc_kind=pick("rpc", st.sampled_from(["model", "dict", "strings"]),
+                      st.just("dict missing")),
+        shape=pick("shape", st.sampled_from([(12, 12), (1, 30), (7, 20)]),
+                   st.sampled_from([(0, 5), (12, -3), (2.5, 4), "12"])))
+
+
+def _moved_off_nodata(nodata, dtype):
+    """Where rsgeo's AvoidNoData moves a valid value equal to ``nodata`` (rsgeo.resample)."""
+    if dtype.kind in "iu":
+        return nodata + 1 if nodata == np.iinfo(dtype).min else nodata - 1
+    return np.nextafter(dtype.type(nodata), dtype.type(np.inf))
+
+
+COMPLEX_DEM = dict(image=np.arange(400, dtype=np.uint8).reshape(20, 20), method="nearest",
+                   nodata=0, dem_kind="complex", dem_transform_kind="affine", dst_crs=None,
+                   rpc_kind="dict", shape=(12, 12))
+
+
 @FUZZ_GDAL
-@given(image=images(max_side=40, dtypes=["uint8", "int16", "uint16", "float32", "float64",
-                                         "int64", "bool", "complex64", ">i2", "float16"]),
-       method=mostly(st.sampled_from(["nearest", "bilinear", "cubic"]), st.just("lanczos")),
-       nodata=mostly(st.sampled_from([0, None]), st.sampled_from([255, float("nan"), "0"])),
-       dem_kind=mostly(st.just("hills"), st.sampled_from(["nan hole", "too small", "list",
-                                                          "complex"])),
-       dem_transform_kind=mostly(st.just("affine"), st.sampled_from(["gdal tuple",
-                                                                     "affine tuple"])),
-       dst_crs=mostly(st.sampled_from([None, "EPSG:4326", 4326]),
-                      st.sampled_from(["EPSG:99999", "not a crs"])),
-       rpc_kind=mostly(st.sampled_from(["model", "dict", "strings"]), st.just("dict missing")),
-       shape=mostly(st.sampled_from([(12, 12), (1, 30)]),
-                    st.sampled_from([(0, 5), (12, -3), (2.5, 4), "12"])))
-def test_orthorectify_refuses_or_matches_gdal(image, method, nodata, dem_kind,
-                                              dem_transform_kind, dst_crs, rpc_kind, shape):
+@given(case=ortho_cases())
+@example(case=COMPLEX_DEM)
+@example(case={**COMPLEX_DEM, "dem_kind": "hills", "nodata": "0"})
+@example(case={**COMPLEX_DEM, "dem_kind": "hills", "nodata": True})
+def test_orthorectify_refuses_or_matches_gdal(case):
+    image, method, nodata, dem_kind, dem_transform_kind, dst_crs, rpc_kind, shape = (
+        case[name] for name in ("image", "method", "nodata", "dem_kind", "dem_transform_kind",
+                                "dst_crs", "rpc_kind", "shape"))
     n = image.shape[-1] if image.ndim >= 2 and image.shape[-1] > 0 else 20
     rpc_dict, degrees = _small_rpc(n)
     rpc_model = terrain.RPCModel.from_dict(rpc_dict)
@@ -849,16 +1122,19 @@ def test_orthorectify_refuses_or_matches_gdal(image, method, nodata, dem_kind,
     elif dem_kind == "list":
         dem = dem.tolist()
     elif dem_kind == "complex":
-        dem = dem + 0j
+        dem = dem + 50j
     given_dem_gt = {"affine": dem_gt, "gdal tuple": dem_gt.to_gdal(),
                     "affine tuple": tuple(dem_gt)[:6]}[dem_transform_kind]
     rows_cols = shape if isinstance(shape, str) else tuple(shape)
-    step = 2 * degrees / 12
+    # the grid spans the image's footprint (2 x degrees) along its longer side, inside the DEM's
+    longest = max(shape) if isinstance(shape, tuple) and min(shape) > 0 else 12
+    step = 2 * degrees / longest
     grid = affine.Affine(step, 0, -34.9 - degrees, 0, -step, -8.0 + degrees)
     got = call("orthorectify", terrain.orthorectify, image, rpc, dem, given_dem_gt, grid,
                rows_cols, method, nodata=nodata, dst_crs=dst_crs)
     if got is REFUSED:
         return
+    check_nodata_taken("orthorectify", nodata)
     assert image.dtype.kind in "iuf" and dem_kind in ("hills", "list"), (
         f"orthorectify answered on image {image.dtype}, DEM {dem_kind}")
     assert dst_crs in (None, "EPSG:4326", 4326)
@@ -884,6 +1160,17 @@ def test_orthorectify_refuses_or_matches_gdal(image, method, nodata, dem_kind,
     else:
         same = (got == expected) | (np.isnan(got) & np.isnan(expected)
                                     if got.dtype.kind == "f" else False)
+    if nodata == 0 and method != "nearest" and not same.all():
+        # terrain's documented difference (OSGeo/gdal#11711): a valid value that comes out as
+        # the nodata 0 is moved one step off it by rsgeo (GDAL's AvoidNoData, as its VRT warps
+        # do) and left at 0 by GDAL's reproject. Allowed where the value without nodata is 0.
+        raw = np.asarray(terrain.orthorectify(image, rpc, dem, given_dem_gt, grid, rows_cols,
+                                              method, nodata=None, dst_crs=dst_crs))
+        moved = (~same & (expected == 0) & (raw == 0)
+                 & (got == _moved_off_nodata(0, got.dtype)))
+        if moved.any():
+            event("orthorectify: answered with AvoidNoData where GDAL's reproject has none")
+        same |= moved
     assert same.all(), (f"orthorectify differs from GDAL at {(~same).sum()} of {same.size} "
                         f"cells ({image.dtype}, {method}, nodata {nodata})")
     confirmed("orthorectify")
@@ -893,6 +1180,11 @@ def test_orthorectify_refuses_or_matches_gdal(image, method, nodata, dem_kind,
 
 CRS_CHOICES = ["EPSG:29193", "EPSG:31983", "EPSG:29192", "EPSG:32723", "EPSG:4326", "EPSG:4618",
                31983, "EPSG:3857", "not a crs", "EPSG:999999", None, 3.5, "EPSG:5880"]
+GEOGRAPHIC_CHOICES = ("EPSG:4326", "EPSG:4618")
+# what a datum shift is for: one projection in one unit (or geographic) on two datums
+LIKE_CRS_PAIRS = [("EPSG:29193", "EPSG:31983"), (31983, "EPSG:29193"),
+                  ("EPSG:32723", "EPSG:31983"), ("EPSG:29193", "EPSG:32723"),
+                  ("EPSG:4618", "EPSG:4326"), ("EPSG:4326", "EPSG:4618")]
 
 
 def _area_of_use(crs):
@@ -908,26 +1200,30 @@ def _area_of_use(crs):
 
 
 @FUZZ
-@given(src_crs=st.sampled_from(CRS_CHOICES), dst_crs=st.sampled_from(CRS_CHOICES),
-       where=st.sampled_from(["utm"] * 6 + ["lonlat", "far", "huge", "nan", "empty", "list",
-                              "strings", "shape3"]),
+@given(crs_pair=mostly(st.sampled_from(LIKE_CRS_PAIRS),
+                      st.tuples(st.sampled_from(CRS_CHOICES), st.sampled_from(CRS_CHOICES)), 1),
+       where=mostly(st.just("native"), st.sampled_from(
+           ["utm", "lonlat", "far", "huge", "nan", "empty", "list", "strings", "shape3"]), 2),
        n=st.integers(1, 5))
-def test_datum_shift_refuses_or_matches_proj(src_crs, dst_crs, where, n):
+def test_datum_shift_refuses_or_matches_proj(crs_pair, where, n):
     from rasterio.crs import CRS
     from rasterio.warp import transform
 
+    src_crs, dst_crs = crs_pair
+    if where == "native":       # the coordinates src_crs has over south-east Brazil
+        where = "lonlat" if src_crs in GEOGRAPHIC_CHOICES else "utm"
     rng = np.random.default_rng(n)
     points = {"utm": np.column_stack([rng.uniform(300e3, 700e3, n),
                                       rng.uniform(7.2e6, 7.6e6, n)]),
               "lonlat": np.column_stack([rng.uniform(-48, -42, n), rng.uniform(-24, -20, n)]),
               "far": np.column_stack([rng.uniform(-5e6, 5e6, n), rng.uniform(-5e6, 5e6, n)]),
-              "huge": np.full((n, 2), 1e30), "nan": np.full((n, 2), np.nan),
+              "huge": np.full((n, 2), 1e7), "nan": np.full((n, 2), np.nan),
               "empty": np.empty((0, 2)), "list": [[500000.0, 7400000.0]] * n,
               "strings": [["500000", "7400000"]] * n, "shape3": np.ones((n, 3))}[where]
     got = call("datum_shift", georef.datum_shift, points, src_crs, dst_crs)
     if got is REFUSED:
         return
-    assert where not in ("nan", "huge", "shape3"), f"datum_shift answered on {where} points"
+    assert where not in ("nan", "shape3"), f"datum_shift answered on {where} points"
     src, dst = CRS.from_user_input(src_crs), CRS.from_user_input(dst_crs)
     assert src.linear_units == dst.linear_units, (
         f"datum_shift from {src_crs} ({src.linear_units}) to {dst_crs} ({dst.linear_units}): "
@@ -956,6 +1252,15 @@ def test_datum_shift_refuses_or_matches_proj(src_crs, dst_crs, where, n):
     assert (distance < 1000).all() or src.linear_units not in ("metre", "meter"), (
         f"datum_shift({where} points, {src_crs} -> {dst_crs}) reports {distance.max():.0f} m")
     confirmed("datum_shift")
+
+
+@pytest.mark.parametrize("src_crs, dst_crs", [("EPSG:3857", "EPSG:3857"),
+                                              ("EPSG:29193", "EPSG:31983")])
+def test_datum_shift_refuses_points_at_1e30(src_crs, dst_crs):
+    # the property above draws |v| <= 1e7: PROJ's inverse Web Mercator, asked for longitude and
+    # latitude of (1e30, 1e30) on rsgeo's area-of-use check, did not return (issue 26)
+    with pytest.raises(RsgeoError):
+        georef.datum_shift(np.full((2, 2), 1e30), src_crs, dst_crs)
 
 
 # -- read_points / write_points -------------------------------------------------------------------
