@@ -54,8 +54,8 @@ instruction, each cell's operations in GDAL's order, so the numbers do not
 change); on a grid in EPSG:4326, the RPC's own CRS and the usual orthoimage
 grid, the longitude and latitude come from the grid's geotransform, with no
 PROJ. PROJ, which cannot run compiled, transforms a projected grid's cells
-(and the DEM's, when the DEM is projected) strip by strip, through the very
-GDAL function rasterio calls (``OCTTransform``) on the arrays. Then
+(and the DEM's, when the DEM is projected) strip by strip, through
+``rasterio.warp.transform``. Then
 :func:`rsgeo.resample.interpolate`. ``benchmarks/orthorectify.py`` times it
 against GDAL. Note that gdalwarp does not approximate RPC + DEM by default:
 given ``RPC_DEM`` its error threshold is 0 (exact) unless ``-et`` says
@@ -1011,177 +1011,18 @@ def _grid_centres(gt, shape, start=0, stop=None):
 def _to_crs(x, y, src, dst, num_threads=1):
     """Points from CRS src to dst with GDAL's PROJ (rasterio.warp.transform); None = EPSG:4326.
 
-    The same GDAL call (``OCTTransform``) straight on the arrays when it can be reached
-    (:func:`_gdal_transform`: a few times faster, and over ``num_threads`` threads), through
-    rasterio otherwise; the numbers are the same.
+    ``num_threads`` is unused: PROJ runs in rasterio's one call (GDAL's ``OCTTransform``,
+    which rasterio reaches through Python objects, a coordinate at a time: most of a
+    projected grid's time; a grid in EPSG:4326 needs no PROJ).
     """
     src = src or "EPSG:4326"
     dst = dst or "EPSG:4326"
     if str(src) == str(dst):
         return x, y
-    flat_x = np.ascontiguousarray(np.ravel(x), dtype=np.float64)
-    flat_y = np.ascontiguousarray(np.ravel(y), dtype=np.float64)
-    done = _gdal_transform(src, dst, flat_x, flat_y, num_threads)
-    if done is None:
-        from rasterio.warp import transform as warp_transform
-
-        done = warp_transform(src, dst, flat_x, flat_y)
-    tx, ty = done
-    return np.reshape(tx, np.shape(x)), np.reshape(ty, np.shape(y))
-
-
-# GDAL's C library as rasterio loaded it (ctypes.CDLL), False where it cannot be reached
-_GDAL = None
-# the sample of points checked against rasterio.warp.transform at every call
-_CHECKED_POINTS = 5
-# the most points given to one call of GDAL's OCTTransform
-_OCT_POINTS = 2 ** 24
-
-
-def _gdal_library():
-    """GDAL's C library, the very one rasterio uses, through ctypes; None if not found.
-
-    rasterio's ``warp.transform`` calls GDAL's ``OCTTransform`` too, but copies every
-    coordinate through a Python object each way (more than half of its time on a strip of
-    orthorectify); calling it on the arrays' memory gives the same numbers without that.
-    The library is found among those loaded into this process (Linux's /proc/self/maps);
-    anywhere else rasterio's path is used.
-    """
-    global _GDAL
-    if _GDAL is None:
-        _GDAL = False
-        try:
-            import ctypes
-
-            import rasterio._base  # noqa: F401  (loads GDAL's library)
-
-            with open("/proc/self/maps") as maps:
-                paths = {line.split()[-1] for line in maps
-                         if "/libgdal" in line and ".so" in line.split()[-1]}
-            if len(paths) != 1:
-                return None
-            library = ctypes.CDLL(paths.pop())
-            handle, text = ctypes.c_void_p, ctypes.c_char_p
-            doubles = ctypes.POINTER(ctypes.c_double)
-            for name, result, arguments in (
-                    ("OSRNewSpatialReference", handle, [text]),
-                    ("OSRSetAxisMappingStrategy", None, [handle, ctypes.c_int]),
-                    ("OSRDestroySpatialReference", None, [handle]),
-                    ("OCTNewCoordinateTransformation", handle, [handle, handle]),
-                    ("OCTDestroyCoordinateTransformation", None, [handle]),
-                    ("OCTTransform", ctypes.c_int, [handle, ctypes.c_int, doubles, doubles,
-                                                    doubles]),
-                    ("CPLPushErrorHandler", None, [handle]),
-                    ("CPLPopErrorHandler", None, [])):
-                function = getattr(library, name)
-                function.restype, function.argtypes = result, arguments
-            library.quiet = ctypes.cast(library.CPLQuietErrorHandler, handle)
-            library.doubles = doubles
-            _GDAL = library
-        except (OSError, AttributeError, ImportError):
-            pass
-    return _GDAL or None
-
-
-def _gdal_transform(src, dst, x, y, num_threads=1):
-    """(x, y) of contiguous float64 arrays through GDAL's OCTTransform, as rasterio's
-    ``warp.transform`` computes them; None when GDAL's library cannot be reached, a point
-    fails (rasterio then raises its error) or a sample of points differs from rasterio's.
-
-    With ``num_threads`` > 1 the points are shared among the calling thread and worker
-    threads that live as long as the process: each thread keeps its own transformations
-    (GDAL's cannot be shared between threads, and a new thread would set up PROJ anew).
-    """
-    library = _gdal_library()
-    if library is None or x.size == 0 or x.size != y.size:
-        return None
-    from rasterio.crs import CRS
-
-    wkts = tuple(CRS.from_user_input(crs).to_wkt().encode() for crs in (src, dst))
-    tx, ty = x.copy(), y.copy()
-    bounds = np.linspace(0, x.size, min(num_threads, x.size) + 1).astype(int)
-
-    def run(first, stop):
-        transformation = _thread_transformation(library, wkts)
-        if not transformation:
-            return False
-        # GDAL's error messages kept quiet: a failed point sends the strip to rasterio's path
-        library.CPLPushErrorHandler(library.quiet)
-        try:
-            # OCTTransform counts its points in a C int: calls of at most 2**24 points each
-            return all([library.OCTTransform(
-                transformation, int(min(part + _OCT_POINTS, stop) - part),
-                tx[part:stop].ctypes.data_as(library.doubles),
-                ty[part:stop].ctypes.data_as(library.doubles), None)
-                for part in range(int(first), int(stop), _OCT_POINTS)])
-        finally:
-            library.CPLPopErrorHandler()
-
-    if len(bounds) > 2:
-        others = _proj_workers().map(run, bounds[1:-1], bounds[2:])
-        succeeded = run(bounds[0], bounds[1])
-        succeeded = all(list(others)) and succeeded
-    else:
-        succeeded = run(0, x.size)
-    if not succeeded:
-        return None
     from rasterio.warp import transform as warp_transform
 
-    sample = np.unique(np.linspace(0, x.size - 1, _CHECKED_POINTS).astype(int))
-    check_x, check_y = warp_transform(src, dst, x[sample], y[sample])
-    if not (np.array_equal(check_x, tx[sample]) and np.array_equal(check_y, ty[sample])):
-        return None
-    return tx, ty
-
-
-# each thread's GDAL transformations, by (source WKT, target WKT); the few most recent kept
-_THREAD_TRANSFORMATIONS = None
-_KEPT_TRANSFORMATIONS = 8
-_PROJ_WORKERS = None
-
-
-def _thread_transformation(library, wkts):
-    """This thread's GDAL coordinate transformation between two WKTs (0 if GDAL refuses)."""
-    global _THREAD_TRANSFORMATIONS
-    if _THREAD_TRANSFORMATIONS is None:
-        import threading
-
-        _THREAD_TRANSFORMATIONS = threading.local()
-    kept = getattr(_THREAD_TRANSFORMATIONS, "kept", None)
-    if kept is None:
-        kept = _THREAD_TRANSFORMATIONS.kept = {}
-    if wkts in kept:
-        kept[wkts] = kept.pop(wkts)                   # the most recent last
-        return kept[wkts][0]
-    spatial = [library.OSRNewSpatialReference(wkt) for wkt in wkts]
-    for reference in spatial:
-        library.OSRSetAxisMappingStrategy(reference, 0)       # x = longitude, as rasterio
-    library.CPLPushErrorHandler(library.quiet)
-    try:
-        transformation = library.OCTNewCoordinateTransformation(*spatial)
-    finally:
-        library.CPLPopErrorHandler()
-    kept[wkts] = (transformation, spatial)
-    while len(kept) > _KEPT_TRANSFORMATIONS:
-        oldest, old_spatial = kept.pop(next(iter(kept)))
-        if oldest:
-            library.OCTDestroyCoordinateTransformation(oldest)
-        for reference in old_spatial:
-            library.OSRDestroySpatialReference(reference)
-    return transformation
-
-
-def _proj_workers():
-    """The worker threads of _gdal_transform (as many as Numba may use, less the caller)."""
-    global _PROJ_WORKERS
-    if _PROJ_WORKERS is None:
-        from concurrent.futures import ThreadPoolExecutor
-
-        import numba
-
-        _PROJ_WORKERS = ThreadPoolExecutor(max(1, numba.config.NUMBA_NUM_THREADS - 1),
-                                           thread_name_prefix="rsgeo-proj")
-    return _PROJ_WORKERS
+    tx, ty = warp_transform(src, dst, np.ravel(x), np.ravel(y))
+    return np.reshape(tx, np.shape(x)), np.reshape(ty, np.shape(y))
 
 
 def _is_lon_lat(crs):

@@ -167,15 +167,11 @@ def polynomial_parameters(order, origin, scale, coefficients):
     return np.concatenate([head, coefficients[0], coefficients[1]])
 
 
-@njit(cache=True)
-def polynomial_point(parameters, x, y):
-    """A polynomial at one point (x, y): the terms in rsgeo's order, summed left to right."""
-    order = int(parameters[0])
-    m = int(parameters[4])
-    tx = (x - parameters[1]) / parameters[3]
-    ty = (y - parameters[2]) / parameters[3]
-    a = parameters[5:5 + m]
-    b = parameters[5 + m:5 + 2 * m]
+@njit(cache=True, inline="always")
+def _polynomial_uv(order, x0, y0, scale, a, b, x, y):
+    """The polynomial with coefficients ``a`` (col) and ``b`` (row) at (x, y)."""
+    tx = (x - x0) / scale
+    ty = (y - y0) / scale
     u = a[0] + a[1] * tx + a[2] * ty
     v = b[0] + b[1] * tx + b[2] * ty
     if order >= 2:
@@ -191,6 +187,14 @@ def polynomial_point(parameters, x, y):
 
 
 @njit(cache=True)
+def polynomial_point(parameters, x, y):
+    """A polynomial at one point (x, y): the terms in rsgeo's order, summed left to right."""
+    m = int(parameters[4])
+    return _polynomial_uv(int(parameters[0]), parameters[1], parameters[2], parameters[3],
+                          parameters[5:5 + m], parameters[5 + m:5 + 2 * m], x, y)
+
+
+@njit(cache=True)
 def polynomial_many(parameters, points):
     """A polynomial at (n, 2) points: an (n, 2) array (what the model's ``__call__`` returns)."""
     out = np.empty((points.shape[0], 2))
@@ -199,7 +203,7 @@ def polynomial_many(parameters, points):
     return out
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def projective_point(matrix, x, y):
     """A 3 x 3 homogeneous matrix at (x, y); NaN on the vanishing line."""
     w = matrix[6] * x + matrix[7] * y + matrix[8]
@@ -247,8 +251,7 @@ def row_positions(packed, i, n, cols, rows):
     if packed[1] > 0.0 and n > 5:
         _approximate_row(packed, py, n, cols, rows)
     else:
-        for j in range(n):
-            cols[j], rows[j] = to_source(packed, pixel_centre(packed, j), py)
+        _exact(packed, py, cols, rows, 0, n)
 
 
 @njit(cache=True)
@@ -259,9 +262,38 @@ def pixel_centre(packed, j):
 
 @njit(cache=True)
 def _exact(packed, py, cols, rows, first, stop):
-    """Exact positions of pixels first .. stop - 1 of the row."""
-    for j in range(first, stop):
-        cols[j], rows[j] = to_source(packed, pixel_centre(packed, j), py)
+    """Exact positions of pixels first .. stop - 1 of the row.
+
+    :func:`to_source`'s operations, with the model's kind and numbers read once
+    for the row rather than at every pixel (the per-pixel dispatch cost a
+    nearest-neighbour warp through a polynomial half its time).
+    """
+    kind = int(packed[0])
+    model = packed[_HEADER:]
+    c, a, b, f, d, e = packed[4], packed[5], packed[6], packed[7], packed[8], packed[9]
+    col_off, row_off, x_off = packed[2], packed[3], packed[10]
+    if kind == AFFINE:
+        m0, m1, m2, m3, m4, m5 = model[0], model[1], model[2], model[3], model[4], model[5]
+        for j in range(first, stop):
+            px = (j + 0.5) + x_off
+            x = c + px * a + py * b
+            y = f + px * d + py * e
+            cols[j] = (m0 + x * m1 + y * m2) - col_off
+            rows[j] = (m3 + x * m4 + y * m5) - row_off
+    elif kind == POLYNOMIAL:
+        order, m = int(model[0]), int(model[4])
+        x0, y0, scale = model[1], model[2], model[3]
+        ca, cb = model[5:5 + m], model[5 + m:5 + 2 * m]
+        for j in range(first, stop):
+            px = (j + 0.5) + x_off
+            x = c + px * a + py * b
+            y = f + px * d + py * e
+            u, v = _polynomial_uv(order, x0, y0, scale, ca, cb, x, y)
+            cols[j] = u - col_off
+            rows[j] = v - row_off
+    else:
+        for j in range(first, stop):
+            cols[j], rows[j] = to_source(packed, pixel_centre(packed, j), py)
 
 
 @njit(cache=True)

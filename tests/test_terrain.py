@@ -561,11 +561,8 @@ def test_orthorectify_refuses_latitudes_beyond_the_pole_that_a_dem_covers(scene)
         orthorectify(image, rpc, np.zeros((100, 30)), dem_gt, grid, (20, 20), "nearest")
 
 
-def test_orthorectify_does_not_depend_on_threads_or_on_reaching_gdal_directly(scene,
-                                                                               monkeypatch):
+def test_orthorectify_does_not_depend_on_threads_or_strips(scene):
     from rasterio.warp import transform
-
-    import rsgeo.terrain as terrain
 
     _, rpc, dem, dem_gt, image = scene
     x, y = transform("EPSG:4326", "EPSG:31985", [LON0], [LAT0])
@@ -577,34 +574,6 @@ def test_orthorectify_does_not_depend_on_threads_or_on_reaching_gdal_directly(sc
         two = orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
                            dst_crs=crs, num_threads=2)
         np.testing.assert_array_equal(one, two)
-        with monkeypatch.context() as patch:
-            patch.setattr(terrain, "_GDAL", False)   # PROJ through rasterio.warp.transform
-            np.testing.assert_array_equal(
-                orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
-                             dst_crs=crs), one)
-
-
-def test_proj_on_the_arrays_is_rasterio_warp_transform_to_the_last_bit(monkeypatch):
-    from rasterio.crs import CRS
-    from rasterio.warp import transform
-
-    import rsgeo.terrain as terrain
-
-    if terrain._gdal_library() is None:
-        pytest.skip("GDAL's library is not reachable here (not Linux): rasterio's path is used")
-    rng = np.random.default_rng(4)
-    lon, lat = rng.uniform(LON0 - 0.05, LON0 + 0.05, 10_001), rng.uniform(LAT0 - 0.05,
-                                                                         LAT0 + 0.05, 10_001)
-    src, dst = CRS.from_epsg(4326), CRS.from_epsg(31985)
-    for threads, calls_of in ((1, 2 ** 24), (2, 2 ** 24), (2, 999)):
-        monkeypatch.setattr(terrain, "_OCT_POINTS", calls_of)   # GDAL called in parts
-        x, y = terrain._gdal_transform(src, dst, lon, lat, threads)
-        np.testing.assert_array_equal(np.array([x, y]), np.array(transform(src, dst, lon, lat)))
-        back = terrain._gdal_transform(dst, src, x, y, threads)
-        np.testing.assert_array_equal(np.array(back), np.array(transform(dst, src, x, y)))
-    # a point PROJ cannot transform: rasterio's path, which raises as it always did
-    assert terrain._gdal_transform(dst, src, np.array([1e30, x[0]]), np.array([0.0, y[0]])) \
-        is None
 
 
 def test_orthorectify_grid_and_dem_in_utm_against_gdal(scene):
