@@ -188,7 +188,20 @@ def _polynomial_uv(order, x0, y0, scale, a, b, x, y):
 
 @njit(cache=True)
 def polynomial_point(parameters, x, y):
-    """A polynomial at one point (x, y): the terms in rsgeo's order, summed left to right."""
+    """A polynomial at one point (x, y): the terms in rsgeo's order, summed left to right.
+
+    Parameters
+    ----------
+    parameters : ndarray
+        From :func:`polynomial_parameters`.
+    x, y : float
+        The point.
+
+    Returns
+    -------
+    (float, float)
+        The polynomial's two outputs (col, row for a map -> image model).
+    """
     m = int(parameters[4])
     return _polynomial_uv(int(parameters[0]), parameters[1], parameters[2], parameters[3],
                           parameters[5:5 + m], parameters[5 + m:5 + 2 * m], x, y)
@@ -196,7 +209,18 @@ def polynomial_point(parameters, x, y):
 
 @njit(cache=True)
 def polynomial_many(parameters, points):
-    """A polynomial at (n, 2) points: an (n, 2) array (what the model's ``__call__`` returns)."""
+    """A polynomial at (n, 2) points (what the model's ``__call__`` returns).
+
+    Parameters
+    ----------
+    parameters : ndarray
+        From :func:`polynomial_parameters`.
+    points : (n, 2) ndarray of float64
+
+    Returns
+    -------
+    ndarray, shape (n, 2)
+    """
     out = np.empty((points.shape[0], 2))
     for k in range(points.shape[0]):
         out[k, 0], out[k, 1] = polynomial_point(parameters, points[k, 0], points[k, 1])
@@ -205,7 +229,19 @@ def polynomial_many(parameters, points):
 
 @njit(cache=True, inline="always")
 def projective_point(matrix, x, y):
-    """A 3 x 3 homogeneous matrix at (x, y); NaN on the vanishing line."""
+    """A 3 x 3 homogeneous matrix at (x, y).
+
+    Parameters
+    ----------
+    matrix : ndarray, shape (9,)
+        The matrix row by row.
+    x, y : float
+
+    Returns
+    -------
+    (float, float)
+        The mapped point; (NaN, NaN) on the vanishing line, where it has no value.
+    """
     w = matrix[6] * x + matrix[7] * y + matrix[8]
     if abs(w) < 1e-12:
         return np.nan, np.nan
@@ -219,6 +255,19 @@ def to_source(packed, px, py):
 
     The output grid's geotransform first (GDALApplyGeoTransform's
     c + px a + py b), then the model, then the source window's offset.
+
+    Parameters
+    ----------
+    packed : ndarray
+        From :func:`pack`.
+    px, py : float
+        A position in the output grid's pixels (a cell's centre is
+        (j + 0.5, i + 0.5)).
+
+    Returns
+    -------
+    (float, float)
+        (col, row) in the source.
     """
     x = packed[4] + px * packed[5] + py * packed[6]
     y = packed[7] + px * packed[8] + py * packed[9]
@@ -245,7 +294,18 @@ def row_positions(packed, i, n, cols, rows):
 
     Exact (every pixel through :func:`to_source`) unless ``packed`` holds an
     error threshold > 0 and the row has more than 5 pixels: then GDAL's
-    approximation (:func:`_approximate_row`).
+    approximation (``_approximate_row``).
+
+    Parameters
+    ----------
+    packed : ndarray
+        From :func:`pack`.
+    i : int
+        The row, in the output window.
+    n : int
+        Its pixels.
+    cols, rows : ndarray of float64, at least ``n`` long
+        Filled with the positions.
     """
     py = (i + 0.5) + packed[11]
     if packed[1] > 0.0 and n > 5:
@@ -256,7 +316,19 @@ def row_positions(packed, i, n, cols, rows):
 
 @njit(cache=True)
 def pixel_centre(packed, j):
-    """The x of pixel j's centre in the output grid: (j + 0.5) + the window's column offset."""
+    """The x of pixel j's centre in the output grid: (j + 0.5) + the window's column offset.
+
+    Parameters
+    ----------
+    packed : ndarray
+        From :func:`pack`.
+    j : int
+        The column, in the output window.
+
+    Returns
+    -------
+    float
+    """
     return (j + 0.5) + packed[10]
 
 
