@@ -390,7 +390,7 @@ def write_points(path, gcps, model=None):
     extra columns, ``id`` and ``note``: QGIS's reader
     (``QgsGCPList::loadGcps``) takes only the first five columns and ignores
     them, :func:`read_points` reads them back, empty ones included. An id or
-    a note holding a comma or a quote is quoted as the :mod:`csv` module does;
+    a note holding a comma or a quote is quoted as Python's ``csv`` module does;
     one holding a line break is refused, since QGIS reads the file line by line.
 
     Parameters

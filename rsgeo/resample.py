@@ -1316,7 +1316,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         GDAL's approximate transformer (``gdalwarp -et``; gdalwarp's and
         ``rasterio.warp.reproject``'s default is 0.125 source pixel): each
         output row's positions are interpolated linearly between exact ones
-        wherever that stays within this many pixels (|dcol| + |drow|) of the
+        wherever that stays within this many pixels (``|dcol| + |drow|``) of the
         exact position, as ``GDALApproxTransform`` does, pixel for pixel.
         0 (the default): every position exact (``-et 0``). Needs a compiled
         mapping (an ``affine.Affine`` or an rsgeo model); "average" evaluates

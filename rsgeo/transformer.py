@@ -36,7 +36,7 @@ evaluated by :func:`rsgeo.resample.warp` in NumPy, strip by strip, as before.
 ``GDALApproxTransform`` with an error threshold of 0.125 pixel unless told
 otherwise (``-et``): for a row it computes the exact positions of the first,
 middle and last pixels only; if the middle one is within the threshold
-(|dcol| + |drow|) of the straight line through the other two, the whole row
+(``|dcol| + |drow|``) of the straight line through the other two, the whole row
 is interpolated linearly from the first; otherwise each half is treated the
 same way, and a half of 5 pixels or fewer is computed exactly.
 :func:`row_positions` with a threshold > 0 follows it step by step (the same
