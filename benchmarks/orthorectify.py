@@ -70,13 +70,11 @@ threads) are listed at the end.
 """
 
 import argparse
-import csv
 import os
 import subprocess
 import sys
 import tempfile
 import time
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -88,7 +86,9 @@ from rsgeo.terrain import PushbroomSensor, fit_rpc, orthorectify
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benchmarks"))
-from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
+from gdal_vrt import GdalWarps, gen_img_proj, warped_vrt  # noqa: E402  (benchmarks/)
+from machine import describe, save_table  # noqa: E402  (benchmarks/machine.py)
+from timing import time_in_turn  # noqa: E402  (benchmarks/timing.py)
 
 #: GDAL's approximation threshold (gdalwarp -et), in source pixels
 ERROR_THRESHOLD = 0.125
@@ -98,8 +98,7 @@ LON0, LAT0 = -34.9, -8.0              # the scene's centre (Olinda)
 HALF = 0.04                           # degrees: the output grid spans LON0 +- HALF, LAT0 +- HALF
 KX, KY = 111320.0 * np.cos(np.radians(LAT0)), 110574.0   # metres per degree, locally
 ANGLE, ALTITUDE = 20.0, 700e3         # view angle (degrees off nadir) and orbit height (m)
-_GDAL_RESAMPLING = {"nearest": "NearestNeighbour", "bilinear": "Bilinear", "cubic": "Cubic"}
-_GDAL_TYPES = {"uint8": "Byte", "int16": "Int16", "uint16": "UInt16"}
+_DTYPES = ("uint8", "int16", "uint16")
 
 
 # --- The scene --------------------------------------------------------------------------------
@@ -243,114 +242,29 @@ def rpc_transformer_xml(scene):
 def vrt_xml(source_path, scene, method, dtype, threads, max_error=None):
     """A VRTWarpedDataset: GDAL's RPC transformer (and PROJ to a UTM grid), one block.
 
-    As benchmarks/resample.py's VRT (destination nodata 0, XSCALE = YSCALE =
-    1, the warp option NUM_THREADS), with ``max_error`` None for the exact
-    transformer or GDAL's approximate transformer's threshold.
+    As benchmarks/resample.py's VRT (benchmarks/gdal_vrt.py: destination
+    nodata 0, XSCALE = YSCALE = 1, the warp option NUM_THREADS), with
+    ``max_error`` None for the exact transformer or GDAL's approximate
+    transformer's threshold.
     """
-    def geotransform(transform):
-        return ",".join(repr(float(v)) for v in transform.to_gdal())
-
     reproject = ""
     if scene.crs != "EPSG:4326":
         # source georeferenced coordinates (the RPC's longitude, latitude) -> the grid's CRS
         reproject = ("<ReprojectTransformer><ReprojectionTransformer>"
                      f"<SourceSRS>EPSG:4326</SourceSRS><TargetSRS>{scene.crs}</TargetSRS>"
                      "</ReprojectionTransformer></ReprojectTransformer>")
-    transformer = (f"<GenImgProjTransformer><SrcRPCTransformer>{rpc_transformer_xml(scene)}"
-                   f"</SrcRPCTransformer>{reproject}"
-                   f"<DstGeoTransform>{geotransform(scene.transform)}</DstGeoTransform>"
-                   f"<DstInvGeoTransform>{geotransform(~scene.transform)}</DstInvGeoTransform>"
-                   "</GenImgProjTransformer>")
-    if max_error is not None:
-        transformer = (f"<ApproxTransformer><MaxError>{max_error!r}</MaxError>"
-                       f"<BaseTransformer>{transformer}</BaseTransformer></ApproxTransformer>")
-    options = {"INIT_DEST": "NO_DATA", "NUM_THREADS": threads, "XSCALE": 1, "YSCALE": 1}
-    options = "".join(f'<Option name="{key}">{value}</Option>' for key, value in options.items())
-    gdal_type = _GDAL_TYPES[dtype]
-    size = scene.size
-    return f"""<VRTDataset rasterXSize="{size}" rasterYSize="{size}" \
-subClass="VRTWarpedDataset">
-  <GeoTransform>{geotransform(scene.transform)}</GeoTransform>
-  <VRTRasterBand dataType="{gdal_type}" band="1" subClass="VRTWarpedRasterBand">\
-<NoDataValue>0</NoDataValue></VRTRasterBand>
-  <BlockXSize>{size}</BlockXSize><BlockYSize>{size}</BlockYSize>
-  <GDALWarpOptions>
-    <WarpMemoryLimit>{1 << 30}</WarpMemoryLimit>
-    <ResampleAlg>{_GDAL_RESAMPLING[method]}</ResampleAlg>
-    <WorkingDataType>{gdal_type}</WorkingDataType>{options}
-    <SourceDataset relativeToVRT="0">{source_path}</SourceDataset>
-    <Transformer>{transformer}</Transformer>
-    <BandList><BandMapping src="1" dst="1"><DstNoDataReal>0</DstNoDataReal>\
-<DstNoDataImag>0</DstNoDataImag></BandMapping></BandList>
-  </GDALWarpOptions>
-</VRTDataset>"""
+    source = f"<SrcRPCTransformer>{rpc_transformer_xml(scene)}</SrcRPCTransformer>"
+    return warped_vrt(source_path, scene.transform, (scene.size, scene.size),
+                      gen_img_proj(source, scene.transform, reproject), method, dtype,
+                      threads, max_error)
 
 
-class GdalWarps:
-    """The source written once as a GeoTIFF; :meth:`runner` gives a warp through a VRT."""
-
-    def __init__(self, folder, image):
-        import rasterio
-
-        self.folder = Path(folder)
-        self.dtype = image.dtype.name
-        self.source = str(self.folder / f"source_{image.shape[0]}_{self.dtype}.tif")
-        with warnings.catch_warnings():
-            # no geotransform: the VRT's RPC transformer places the source
-            warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
-            with rasterio.open(self.source, "w", driver="GTiff", width=image.shape[1],
-                               height=image.shape[0], count=1, dtype=image.dtype) as dataset:
-                dataset.write(image, 1)
-        self._count = 0
-
-    def runner(self, scene, method, threads, max_error=None):
-        """A function that warps with GDAL (opening and reading the VRT) and returns the array."""
-        import rasterio
-
-        self._count += 1
-        vrt = self.folder / f"ortho_{self._count}.vrt"
-        vrt.write_text(vrt_xml(self.source, scene, method, self.dtype, threads, max_error))
-
-        def run():
-            # a new dataset each time: a second read of the same one would come from its cache
-            with rasterio.open(vrt) as dataset:
-                return dataset.read(1)
-        return run
+def gdal_runner(gdal, scene, method, threads, max_error=None):
+    """GDAL's warp of ``scene`` through :class:`gdal_vrt.GdalWarps`."""
+    return gdal.runner(vrt_xml(gdal.source, scene, method, gdal.dtype, threads, max_error))
 
 
 # --- Timing -----------------------------------------------------------------------------------
-
-
-def time_in_turn(runners, repeat, keep=(), once_above=2.0):
-    """Best seconds of each runner over ``repeat`` rounds, the runners in turn in each round.
-
-    As benchmarks/resample.py's: a runner whose run took longer than
-    ``once_above`` seconds is not run again; one that raises gets NaN seconds
-    and its error's text. Returns ``(seconds, outputs, errors)``, dicts by
-    label (``outputs`` only for the labels in ``keep``).
-    """
-    seconds = {label: np.inf for label in runners}
-    outputs, errors, finished = {}, {}, set()
-    for _ in range(repeat):
-        for label, run in runners.items():
-            if label in finished:
-                continue
-            start = time.perf_counter()
-            try:
-                out = run()
-            except Exception as error:    # noqa: BLE001  (reported in the row, not fatal)
-                errors[label] = f"{type(error).__name__}: {str(error)[:120]}"
-                seconds[label] = np.nan
-                finished.add(label)
-                continue
-            elapsed = time.perf_counter() - start
-            seconds[label] = min(seconds[label], elapsed)
-            if elapsed > once_above:
-                finished.add(label)
-            if label in keep:
-                outputs[label] = out
-            del out
-    return seconds, outputs, errors
 
 
 def warm_up(image, scene, method, threads=(1,)):
@@ -372,8 +286,8 @@ def row_of(image, scene, method, threads, repeat, gdal, once_above=2.0):
     runners = {}
     for count in threads:
         runners[_label("rsgeo", "exact", count)] = rsgeo_runner(image, scene, method, count)
-        runners[_label("gdal", "exact", count)] = gdal.runner(scene, method, count)
-        runners[_label("gdal", "approx", count)] = gdal.runner(scene, method, count,
+        runners[_label("gdal", "exact", count)] = gdal_runner(gdal, scene, method, count)
+        runners[_label("gdal", "approx", count)] = gdal_runner(gdal, scene, method, count,
                                                                ERROR_THRESHOLD)
     first = threads[0]
     compared = [_label("rsgeo", "exact", first), _label("gdal", "exact", first),
@@ -446,9 +360,9 @@ def measure_child(peer, grid, size, dtype):
             run = rsgeo_runner(image, scene, "bilinear", 1)
         else:
             # GDAL's drivers and PROJ set up on a 32 x 32 warp first
-            run = GdalWarps(folder, image).runner(scene, "bilinear", 1)
+            run = gdal_runner(GdalWarps(folder, image), scene, "bilinear", 1)
             small = Scene(**{**scene.__dict__, "size": 32})
-            GdalWarps(folder, test_image(32, dtype)).runner(small, "bilinear", 1)()
+            gdal_runner(GdalWarps(folder, test_image(32, dtype)), small, "bilinear", 1)()
         try:
             Path("/proc/self/clear_refs").write_text("5")     # VmHWM := VmRSS
             before = _kilobytes("VmRSS")
@@ -524,24 +438,11 @@ def columns(threads):
                     "gdal_peak_bytes_per_px", "note"]
 
 
-def _text(value):
-    if isinstance(value, float):
-        return "" if np.isnan(value) else f"{value:.4g}" if abs(value) < 1 else f"{value:.4f}"
-    return value
-
-
 def save_csv(rows, file, threads, command="", extra=None):
     """Write the table with the machine's description (and ``extra``) as
     ``# key: value`` lines above it."""
-    file = Path(file)
-    file.parent.mkdir(parents=True, exist_ok=True)
-    with open(file, "w", newline="") as handle:
-        handle.write(header_lines({**machine(), **(extra or {}), "command": command}))
-        writer = csv.DictWriter(handle, columns(threads), restval="")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({key: _text(value) for key, value in row.items()})
-    return file
+    return save_table(file, {**machine(), **(extra or {}), "command": command},
+                      columns(threads), rows)
 
 
 def print_table(rows, threads):
@@ -586,7 +487,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--sizes", type=int, nargs="+", default=[2048, 4096])
     parser.add_argument("--dtypes", nargs="+", default=["uint8", "int16"],
-                        choices=sorted(_GDAL_TYPES))
+                        choices=sorted(_DTYPES))
     parser.add_argument("--grids", nargs="+", default=["lonlat", "utm"], choices=GRIDS)
     parser.add_argument("--methods", nargs="+", default=list(METHODS), choices=list(METHODS))
     parser.add_argument("--threads", type=int, nargs="+", default=[1, 2],

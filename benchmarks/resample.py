@@ -82,13 +82,11 @@ threads) are listed at the end.
 """
 
 import argparse
-import csv
 import os
 import subprocess
 import sys
 import tempfile
 import time
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -101,7 +99,9 @@ from rsgeo.transforms import fit_transform
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benchmarks"))
 sys.path.insert(0, str(ROOT / "tests"))       # GDAL's transformer XML: tests/gdal_reference.py
-from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
+from gdal_vrt import GdalWarps, gen_img_proj, warped_vrt  # noqa: E402  (benchmarks/)
+from machine import describe, save_table  # noqa: E402  (benchmarks/machine.py)
+from timing import time_in_turn  # noqa: E402  (benchmarks/timing.py)
 
 #: gdalwarp's default error threshold (-et), in source pixels
 ERROR_THRESHOLD = 0.125
@@ -115,9 +115,6 @@ MODELS = {"affine": ("affine", None, 0), "poly1": ("polynomial", 1, 40),
 #: take an hour
 STRIP_CELLS = {"tps14": 2048 * 2048, "tps200": 512 * 1024}
 DOWNSAMPLED_METHODS = ("bilinear", "cubic", "average")
-_GDAL_RESAMPLING = {"nearest": "NearestNeighbour", "bilinear": "Bilinear", "cubic": "Cubic",
-                    "average": "Average"}
-_GDAL_TYPES = {"uint8": "Byte", "int16": "Int16", "uint16": "UInt16", "float32": "Float32"}
 
 
 # --- The scenes -------------------------------------------------------------------------------
@@ -209,70 +206,9 @@ def vrt_xml(source_path, case, shape, method, dtype, threads, max_error=None, sc
     or GDAL's approximate transformer's threshold. ``scale`` None lets GDAL
     compute XSCALE and YSCALE for the chunk (downsampling).
     """
-    def geotransform(transform):
-        return ",".join(repr(float(v)) for v in transform.to_gdal())
-
-    gdal_type = _GDAL_TYPES[dtype]
-    transformer = (f"<GenImgProjTransformer>{case.gdal_source}"
-                   f"<DstGeoTransform>{geotransform(case.transform)}</DstGeoTransform>"
-                   f"<DstInvGeoTransform>{geotransform(~case.transform)}</DstInvGeoTransform>"
-                   "</GenImgProjTransformer>")
-    if max_error is not None:
-        transformer = (f"<ApproxTransformer><MaxError>{max_error!r}</MaxError>"
-                       f"<BaseTransformer>{transformer}</BaseTransformer></ApproxTransformer>")
-    options = {"INIT_DEST": "NO_DATA", "NUM_THREADS": threads}
-    if scale is not None:
-        options.update(XSCALE=scale[0], YSCALE=scale[1])
-    options = "".join(f'<Option name="{key}">{value}</Option>' for key, value in options.items())
-    return f"""<VRTDataset rasterXSize="{shape[1]}" rasterYSize="{shape[0]}" \
-subClass="VRTWarpedDataset">
-  <GeoTransform>{geotransform(case.transform)}</GeoTransform>
-  <VRTRasterBand dataType="{gdal_type}" band="1" subClass="VRTWarpedRasterBand">\
-<NoDataValue>0</NoDataValue></VRTRasterBand>
-  <BlockXSize>{shape[1]}</BlockXSize><BlockYSize>{shape[0]}</BlockYSize>
-  <GDALWarpOptions>
-    <WarpMemoryLimit>{1 << 30}</WarpMemoryLimit>
-    <ResampleAlg>{_GDAL_RESAMPLING[method]}</ResampleAlg>
-    <WorkingDataType>{gdal_type}</WorkingDataType>{options}
-    <SourceDataset relativeToVRT="0">{source_path}</SourceDataset>
-    <Transformer>{transformer}</Transformer>
-    <BandList><BandMapping src="1" dst="1"><DstNoDataReal>0</DstNoDataReal>\
-<DstNoDataImag>0</DstNoDataImag></BandMapping></BandList>
-  </GDALWarpOptions>
-</VRTDataset>"""
-
-
-class GdalWarps:
-    """The source written once as a GeoTIFF; :meth:`runner` gives a timed warp through a VRT."""
-
-    def __init__(self, folder, image):
-        import rasterio
-
-        self.folder = Path(folder)
-        self.dtype = image.dtype.name
-        self.source = str(self.folder / f"source_{image.shape[0]}_{self.dtype}.tif")
-        with warnings.catch_warnings():
-            # no geotransform: the VRT's transformer places the source
-            warnings.simplefilter("ignore", rasterio.errors.NotGeoreferencedWarning)
-            with rasterio.open(self.source, "w", driver="GTiff", width=image.shape[1],
-                               height=image.shape[0], count=1, dtype=image.dtype) as dataset:
-                dataset.write(image, 1)
-        self._count = 0
-
-    def runner(self, case, shape, method, threads, max_error=None, scale=(1, 1)):
-        """A function that warps with GDAL (opening and reading the VRT) and returns the array."""
-        import rasterio
-
-        self._count += 1
-        vrt = self.folder / f"warp_{self._count}.vrt"
-        vrt.write_text(vrt_xml(self.source, case, shape, method, self.dtype, threads,
-                               max_error, scale))
-
-        def run():
-            # a new dataset each time: a second read of the same one would come from its cache
-            with rasterio.open(vrt) as dataset:
-                return dataset.read(1)
-        return run
+    return warped_vrt(source_path, case.transform, shape,
+                      gen_img_proj(case.gdal_source, case.transform), method, dtype, threads,
+                      max_error, scale)
 
 
 def rsgeo_runner(image, case, shape, method, threads, error_threshold=0.0, scale=1.0):
@@ -323,42 +259,6 @@ def _has_opencv():
 # --- Timing -----------------------------------------------------------------------------------
 
 
-def time_in_turn(runners, repeat, keep=(), once_above=2.0):
-    """Best seconds of each runner over ``repeat`` rounds, the runners in turn in each round.
-
-    A runner whose run took longer than ``once_above`` seconds is not run
-    again: one run that long is its time (a busy machine's noise is a small
-    part of it), and a full run of the table stays within minutes.
-
-    Returns ``(seconds, outputs, errors)``: dicts by label (``outputs`` only for
-    the labels in ``keep``); a runner that raises gets NaN seconds and its
-    error's text, and is not run again.
-    """
-    seconds = {label: np.inf for label in runners}
-    outputs, errors = {}, {}
-    finished = set()
-    for _ in range(repeat):
-        for label, run in runners.items():
-            if label in finished:
-                continue
-            start = time.perf_counter()
-            try:
-                out = run()
-            except Exception as error:    # noqa: BLE001  (reported in the row, not fatal)
-                errors[label] = f"{type(error).__name__}: {str(error)[:120]}"
-                seconds[label] = np.nan
-                finished.add(label)
-                continue
-            elapsed = time.perf_counter() - start
-            seconds[label] = min(seconds[label], elapsed)
-            if elapsed > once_above:
-                finished.add(label)
-            if label in keep:
-                outputs[label] = out
-            del out     # a 4096 x 4096 output is 16 or 32 MB: keep none that is not compared
-    return seconds, outputs, errors
-
-
 def warm_up(image, case, method, thresholds, shape, scale):
     """Compile rsgeo's kernels for this model, method, dtype and scale on a small window.
 
@@ -398,8 +298,9 @@ def row_of(image, case, shape, method, threads, repeat, gdal, others=(), scale=(
             runners[_label("rsgeo", approx, count)] = rsgeo_runner(
                 image, case, shape, method, count, ERROR_THRESHOLD if approx else 0.0,
                 rsgeo_scale)
-            runners[_label("gdal", approx, count)] = gdal.runner(
-                case, shape, method, count, ERROR_THRESHOLD if approx else None, scale)
+            runners[_label("gdal", approx, count)] = gdal.runner(vrt_xml(
+                gdal.source, case, shape, method, gdal.dtype, count,
+                ERROR_THRESHOLD if approx else None, scale))
     if "skimage" in others:
         runners["skimage"] = skimage_runner(image, case, shape, method)
     if "opencv" in others:
@@ -581,24 +482,11 @@ def columns(threads):
     return names + ["differing_exact", "differing_approx", "note"]
 
 
-def _text(value):
-    if isinstance(value, float):
-        return "" if np.isnan(value) else f"{value:.4g}" if abs(value) < 1 else f"{value:.4f}"
-    return value
-
-
 def save_csv(rows, file, threads, command="", extra=None):
     """Write the table with the machine's description (and ``extra``) as
     ``# key: value`` lines above it."""
-    file = Path(file)
-    file.parent.mkdir(parents=True, exist_ok=True)
-    with open(file, "w", newline="") as handle:
-        handle.write(header_lines({**machine(), **(extra or {}), "command": command}))
-        writer = csv.DictWriter(handle, columns(threads), restval="")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({key: _text(value) for key, value in row.items()})
-    return file
+    return save_table(file, {**machine(), **(extra or {}), "command": command},
+                      columns(threads), rows)
 
 
 def print_table(rows, threads):

@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
-from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
+from machine import describe, git, header_lines  # noqa: E402  (benchmarks/machine.py)
 
 RESULTS = Path(__file__).parent / "results"
 REPO = Path(__file__).resolve().parents[1]
@@ -197,14 +197,6 @@ def machine():
 
     return describe(numba=numba.__version__, dask=dask.__version__,
                     GDAL=rasterio.__gdal_version__, rasterio=rasterio.__version__)
-
-
-def git(*args):
-    try:
-        return subprocess.run(["git", *args], cwd=REPO, capture_output=True, text=True,
-                              check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "?"
 
 
 def save_csv(rows, file, command, arguments):
