@@ -1008,12 +1008,12 @@ def _grid_centres(gt, shape, start=0, stop=None):
     return x, y
 
 
-def _to_crs(x, y, src, dst, num_threads=1):
+def _to_crs(x, y, src, dst):
     """Points from CRS src to dst with GDAL's PROJ (rasterio.warp.transform); None = EPSG:4326.
 
-    ``num_threads`` is unused: PROJ runs in rasterio's one call (GDAL's ``OCTTransform``,
-    which rasterio reaches through Python objects, a coordinate at a time: most of a
-    projected grid's time; a grid in EPSG:4326 needs no PROJ).
+    One call, single-threaded (GDAL's ``OCTTransform``, which rasterio reaches through
+    Python objects, a coordinate at a time: most of a projected grid's time; a grid in
+    EPSG:4326 needs no PROJ).
     """
     src = src or "EPSG:4326"
     dst = dst or "EPSG:4326"
@@ -1030,8 +1030,7 @@ def _is_lon_lat(crs):
     return crs is None or str(crs) == "EPSG:4326"
 
 
-def _strip_coordinates(dst_gt, shape, start, stop, dst_crs, dem_crs, num_threads=1,
-                       every=False):
+def _strip_coordinates(dst_gt, shape, start, stop, dst_crs, dem_crs, every=False):
     """Flat (lon, lat, dem_x, dem_y) of the cell centres of output rows start to stop.
 
     lon and lat come from PROJ for a projected grid, dem_x and dem_y for a DEM outside
@@ -1043,9 +1042,9 @@ def _strip_coordinates(dst_gt, shape, start, stop, dst_crs, dem_crs, num_threads
     if every or not geographic or not dem_geographic:
         x, y = (np.ravel(a) for a in np.broadcast_arrays(*_grid_centres(dst_gt, shape, start,
                                                                          stop)))
-        lon, lat = _to_crs(x, y, dst_crs, "EPSG:4326", num_threads)
+        lon, lat = _to_crs(x, y, dst_crs, "EPSG:4326")
     if every or not dem_geographic:
-        dem_x, dem_y = _to_crs(lon, lat, "EPSG:4326", dem_crs, num_threads)
+        dem_x, dem_y = _to_crs(lon, lat, "EPSG:4326", dem_crs)
     if not every and geographic:
         lon = lat = _EMPTY
     return lon, lat, dem_x, dem_y
@@ -1196,7 +1195,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         # PROJ where a CRS is not the RPC's (it cannot run compiled), vectorised over the strip;
         # empty arrays tell the compiled pass to take the grid's or the DEM's own coordinates
         lon, lat, dem_x, dem_y = _strip_coordinates(dst_gt, shape, start, stop, dst_crs,
-                                                    dem_crs, num_threads)
+                                                    dem_crs)
         with _numba_threads(num_threads):
             _ortho_positions(dst_gt, start, shape[1], lon, lat, dem_x, dem_y, dem_work,
                              dem_inverse, packed, width, height, cols, rows,

@@ -50,6 +50,7 @@ GDAL, ``alg/gdaltransformer.cpp`` (``GDALGenImgProjTransform``,
 ``alg/gdalwarpkernel.cpp`` (each row's pixel centres at j + 0.5, i + 0.5).
 """
 
+import affine
 import numpy as np
 from numba import njit
 
@@ -101,8 +102,6 @@ def pack(mapping, dst_transform, src_offset=(0.0, 0.0), error_threshold=0.0,
 
 def _kernel_form(mapping):
     """(kind code, parameters) of a mapping, or (None, None)."""
-    import affine
-
     if isinstance(mapping, affine.Affine):
         return AFFINE, np.array(mapping.to_gdal(), dtype=np.float64)
     form = getattr(mapping, "kernel_form", None)
