@@ -260,3 +260,176 @@ def test_refine_gcps_checks_its_numbers():
         accuracy.refine_gcps(src, src / 2, 1, float("nan"))
     with pytest.raises(TypeError, match="min_gcps"):
         accuracy.refine_gcps(src, src / 2, 1, 1.0, min_gcps=True)
+
+
+# --- Leave-one-out per axis ----------------------------------------------------------------------
+
+def test_leave_one_out_residuals_are_the_fit_without_the_point():
+    image_xy, map_xy = cbers()
+    residuals = accuracy.leave_one_out_residuals(image_xy, map_xy, 1)
+    np.testing.assert_allclose(np.hypot(*residuals.T),
+                               accuracy.leave_one_out_errors(image_xy, map_xy, 1))
+    for index in (0, 6, 13):
+        others = np.arange(len(map_xy)) != index
+        model = transforms.fit_polynomial(image_xy[others], map_xy[others], 1)
+        np.testing.assert_allclose(residuals[index], model(image_xy[index])[0] - map_xy[index])
+    with pytest.raises(GCPError, match="needs at least 4 GCPs"):
+        accuracy.leave_one_out_residuals(image_xy[:3], map_xy[:3], 1)
+
+
+# --- Accuracy standards -------------------------------------------------------------------------
+
+# ET-CQDG's planimetric PEC-PCD in metres per scale (PEC, EP), as the standard tabulates it and
+# as two independent implementations copy it (LFTools, Qualy_Accuracy_Horizontal.py; UFV's
+# PEC-Avalia, biblioteca/normas.py): typed from the table, not computed from the millimetres.
+PEC_PCD_METRES = {
+    1_000: {"A": (0.28, 0.17), "B": (0.5, 0.3), "C": (0.8, 0.5), "D": (1.0, 0.6)},
+    25_000: {"A": (7.0, 4.25), "B": (12.5, 7.5), "C": (20.0, 12.5), "D": (25.0, 15.0)},
+    50_000: {"A": (14.0, 8.5), "B": (25.0, 15.0), "C": (40.0, 25.0), "D": (50.0, 30.0)},
+    250_000: {"A": (70.0, 42.5), "B": (125.0, 75.0), "C": (200.0, 125.0), "D": (250.0, 150.0)},
+}
+
+
+@pytest.mark.parametrize("scale", PEC_PCD_METRES)
+def test_pec_pcd_thresholds_are_the_standards_table(scale):
+    assert accuracy.pec_thresholds(scale) == PEC_PCD_METRES[scale]
+
+
+def test_the_pec_pcd_renames_the_decrees_classes_and_adds_a_stricter_a():
+    pcd, decree = accuracy.PEC_CLASSES["PEC-PCD"], accuracy.PEC_CLASSES["Decreto 89.817"]
+    assert [pcd[name] for name in "BCD"] == [decree[name] for name in "ABC"]
+    assert pcd["A"][0] < pcd["B"][0] and pcd["A"][1] < pcd["B"][1]
+    # art. 8 §2: PEC = 1.6449 EP, to the rounding of the printed millimetres
+    for pec, ep in [*pcd.values(), *decree.values()]:
+        assert pec / ep == pytest.approx(accuracy.LE90_FACTOR, rel=0.03)
+    rng = np.random.default_rng(4)
+    for _ in range(30):
+        errors = rng.normal(0, rng.uniform(2, 30), (rng.integers(5, 40), 2))
+        for scale in (10_000, 25_000, 50_000):
+            new = accuracy.classify(errors, scale).meets
+            old = accuracy.classify(errors, scale, "Decreto 89.817").meets
+            assert [new[name] for name in "BCD"] == [old[name] for name in "ABC"]
+
+
+@pytest.mark.parametrize("n", [1, 5, 10, 13, 20, 30, 70, 101])
+def test_the_90_percent_test_counts_and_its_error_is_the_order_statistic(n):
+    # at 1:25,000 class D's PEC is 25 m: exactly ceil(0.9 n) errors within it pass (90 % is
+    # "at least", so exactly 9 of 10 passes), one fewer fails
+    needed = -(-9 * n // 10)
+    for within in (needed, needed - 1):
+        if within < 0:
+            continue
+        distances = np.r_[np.full(within, 25.0), np.full(n - within, 25.01)]
+        result = accuracy.classify(distances, 25_000)
+        assert result.pec_test["D"] == (within == needed)
+        assert (result.percentile_90 <= 25.0) == result.pec_test["D"]
+        assert result.within["D"] == pytest.approx(within / n)
+
+
+def test_thresholds_are_inclusive_and_the_best_class_is_the_strictest_met():
+    result = accuracy.classify(np.full(20, 15.0), 25_000)   # RMS = class D's EP exactly
+    assert result.best == "D" and result.ep_test["D"] and not result.ep_test["C"]
+    assert accuracy.classify(np.full(20, 4.25), 25_000).best == "A"
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        distances = np.abs(rng.standard_cauchy(rng.integers(3, 30))) * rng.uniform(1, 20)
+        result = accuracy.classify(distances, 50_000)
+        met = [result.meets[name] for name in "ABCD"]
+        assert met == sorted(met)                   # meeting a class means meeting the looser
+        assert result.best == next((name for name in "ABCD" if result.meets[name]), None)
+        assert result.rms == pytest.approx(np.sqrt(np.mean(distances**2)))
+
+
+def test_vectors_and_distances_classify_alike():
+    rng = np.random.default_rng(2)
+    vectors = rng.normal(0, 8, (25, 2))
+    by_vector = accuracy.classify(vectors, 25_000)
+    by_distance = accuracy.classify(np.hypot(*vectors.T), 25_000)
+    assert by_vector == by_distance and accuracy.classify(-vectors, 25_000) == by_vector
+    table = by_vector.table()
+    assert list(table.index) == list("ABCD") and table["meets"].tolist() == [
+        by_vector.meets[name] for name in "ABCD"]
+
+
+def test_largest_scale_is_where_classify_first_says_yes():
+    rng = np.random.default_rng(3)
+    for _ in range(20):
+        errors = rng.normal(0, rng.uniform(1, 60), (rng.integers(8, 30), 2))
+        found = accuracy.largest_scale(errors)
+        for name, denominator in found.items():
+            met = [s for s in accuracy.MAP_SCALES if accuracy.classify(errors, s).meets[name]]
+            assert denominator == (met[0] if met else None)
+            if met:       # the thresholds grow with the denominator: met from there on
+                assert met == [s for s in accuracy.MAP_SCALES if s >= denominator]
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda: accuracy.classify([], 25_000), GCPError, "no check point"),
+    (lambda: accuracy.classify([1.0, np.nan], 25_000), GCPError, "finite"),
+    (lambda: accuracy.classify([1.0, -2.0], 25_000), GCPError, "not negative"),
+    (lambda: accuracy.classify(np.ones((4, 3)), 25_000), GCPError, r"\(n, 2\)"),
+    (lambda: accuracy.classify(["1", "2"], 25_000), TypeError, "real numbers"),
+    (lambda: accuracy.classify([1.0, 2.0], "1:25000"), TypeError, "scale must be a number"),
+    (lambda: accuracy.classify([1.0, 2.0], 0.00004), ValueError, "denominator"),
+    (lambda: accuracy.classify([1.0, 2.0], 25_000, "ASPRS"), ValueError, "PEC-PCD"),
+    (lambda: accuracy.largest_scale([1.0, 2.0], scales=()), GCPError, "scales is empty"),
+    (lambda: accuracy.asprs_horizontal([1.0, 2.0, 3.0]), GCPError, "both components"),
+    (lambda: accuracy.asprs_vertical(np.ones((3, 2))), GCPError, r"\(n,\)"),
+])
+def test_standards_refuse_what_they_cannot_judge(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
+
+
+def test_the_standards_constants_are_the_normal_and_rayleigh_quantiles():
+    # scipy's quantiles, not our arithmetic: CE90 and the NSSDA's 95 % radius are the Rayleigh
+    # distribution's (σ = 1), LE90 and 1.96 the normal distribution's two-sided 90 % and 95 %
+    from scipy import stats
+
+    assert accuracy.CE90_FACTOR == round(stats.rayleigh.ppf(0.90), 4)
+    assert accuracy.NSSDA_95_FACTOR == round(stats.rayleigh.ppf(0.95), 4)
+    # the standards print 1.5175, the rounded 2.1460 over sqrt(2); the exact ratio rounds to 1.5174
+    assert accuracy.CE90_RADIAL_FACTOR == round(accuracy.CE90_FACTOR / np.sqrt(2), 4)
+    assert abs(accuracy.CE90_RADIAL_FACTOR - stats.rayleigh.ppf(0.90) / np.sqrt(2)) < 1e-4
+    assert accuracy.NSSDA_95_RADIAL_FACTOR == round(stats.rayleigh.ppf(0.95) / np.sqrt(2), 4)
+    assert accuracy.LE90_FACTOR == round(stats.norm.ppf(0.95), 4)
+    assert accuracy.VERTICAL_95_FACTOR == round(stats.norm.ppf(0.975), 4)
+
+
+def test_ce90_and_the_95_percent_radius_match_simulated_circular_errors():
+    # 200,000 circular normal errors of σ = 3 m: their 90th and 95th percentile radii are CE90
+    # and the 95 % accuracy to the sampling error of a quantile, sqrt(p(1-p)/n) / density
+    n, sigma = 200_000, 3.0
+    errors = np.random.default_rng(12).normal(0, sigma, (n, 2))
+    radial = np.hypot(*errors.T)
+    result = accuracy.asprs_horizontal(errors)
+    for p, value in ((0.90, result.ce90), (0.95, result.accuracy_95)):
+        quantile = np.quantile(radial, p)
+        density = quantile / sigma**2 * np.exp(-quantile**2 / (2 * sigma**2))
+        sampling = np.sqrt(p * (1 - p) / n) / density
+        assert abs(value - quantile) < 5 * sampling, (p, value, quantile, sampling)
+    # the one-dimensional factor applied to RMSE_r, a common slip, is far outside that error
+    assert abs(accuracy.LE90_FACTOR * result.rmse_r - np.quantile(radial, 0.9)) > 0.5
+    assert result.rmse_r == pytest.approx(np.sqrt(2) * sigma, rel=0.01)
+    assert result.ce90 == pytest.approx(accuracy.CE90_FACTOR * result.rmse_x, rel=0.01)
+
+
+def test_le90_matches_simulated_height_errors():
+    n, sigma = 200_000, 2.0
+    dz = np.random.default_rng(13).normal(0, sigma, n)
+    result = accuracy.asprs_vertical(dz)
+    for p, value in ((0.90, result.le90), (0.95, result.accuracy_95)):
+        quantile = np.quantile(np.abs(dz), p)
+        density = 2 * np.exp(-quantile**2 / (2 * sigma**2)) / (sigma * np.sqrt(2 * np.pi))
+        assert abs(value - quantile) < 5 * np.sqrt(p * (1 - p) / n) / density
+
+
+def test_elongated_errors_get_the_nssda_approximation_or_none():
+    rng = np.random.default_rng(14)
+    elongated = rng.normal(0, 1, (100_000, 2)) * [4.0, 3.2]       # RMSE ratio 0.8
+    result = accuracy.asprs_horizontal(elongated)
+    assert result.axis_ratio == pytest.approx(0.8, abs=0.01)
+    assert result.accuracy_95 == pytest.approx(2.4477 * (result.rmse_x + result.rmse_y) / 2)
+    assert 0.94 < np.mean(np.hypot(*elongated.T) <= result.accuracy_95) < 0.955
+    flat = accuracy.asprs_horizontal(rng.normal(0, 1, (1000, 2)) * [4.0, 1.0])
+    assert np.isnan(flat.accuracy_95) and np.isnan(flat.ce90) and flat.axis_ratio < 0.6

@@ -11,13 +11,15 @@ from .engine import (
     Verdict,
     _first_hint,
     _integer,
+    _listed,
     _one_of,
     _require,
     _WrongForm,
     declare,
 )
 
-__all__ = ["check_design_matrix", "check_rms", "check_blunder", "check_degree_choice"]
+__all__ = ["check_design_matrix", "check_rms", "check_blunder", "check_degree_choice",
+           "check_pec_class"]
 
 _FIRST_COLUMN = N_("The first column is all ones: it multiplies the constant term a0.")
 
@@ -386,3 +388,154 @@ def check_degree_choice(order, gcps, is_check):
                _("degree {order} has a check-point RMS of {rms:.2f} px; a higher degree does "
                  "better on the check points.")).format(order=order, rms=errors[order])
     return Verdict(False, message, _first_hint(hints, DEGREE_CHOICE.general))
+
+
+# -- Task 2.5: the PEC-PCD class of a product --------------------------------------------------
+
+_PEC_ANSWERS = ("A", "B", "C", "D", "none")
+
+
+def _class_name(best):
+    return "none" if best is None else best
+
+
+def _strictest(classes, passes):
+    """The first class (strictest) for which ``passes(name)``, or 'none'."""
+    return next((name for name in classes if passes(name)), "none")
+
+
+def _pec_derived(task):
+    check = as_points(task.check_errors, "check_errors")
+    distances = np.hypot(check[:, 0], check[:, 1])
+    result = accuracy.classify(check, task.scale)
+    return {"check": check, "distances": distances, "result": result,
+            "classes": tuple(result.thresholds)}
+
+
+def _rms_against_pec(task):
+    rms, thresholds = task.result.rms, task.result.thresholds
+    return _strictest(task.classes, lambda name: rms <= thresholds[name][0])
+
+
+def _mean_against_ep(task):
+    mean, result = task.distances.mean(), task.result
+    return _strictest(task.classes,
+                      lambda name: result.pec_test[name] and mean <= result.thresholds[name][1])
+
+
+PEC_CLASS = Declaration(
+    check="check_pec_class", answer="pec_class",
+    inputs=("check_errors", "fit_residuals", "scale"),
+    derive=_pec_derived,
+    right=lambda task: _class_name(task.result.best),
+    general=N_("Both tests, on the check points, in metres at the map's scale (PEC and EP in mm "
+               "× scale / 1000): at least 90 % of the errors within the class's PEC, and their "
+               "RMS within its EP; the class is the strictest that passes both."),
+    mistakes=(
+        Mistake(N_("The RMS goes with the EP, not the PEC: the PEC is for the 90 % test, which "
+                   "counts the errors."),
+                _rms_against_pec),
+        Mistake(N_("Both tests must pass: the check points' RMS within the class's EP too."),
+                lambda task: _strictest(task.classes, lambda name: task.result.pec_test[name])),
+        Mistake(N_("Both tests must pass: at least 90 % of the check points within the class's "
+                   "PEC too."),
+                lambda task: _strictest(task.classes, lambda name: task.result.ep_test[name])),
+        Mistake(N_("Those are the GCPs' fitting residuals: the fit was bent towards them, so "
+                   "they flatter the product. A class is measured on the check points."),
+                lambda task: _class_name(accuracy.classify(task.fit_residuals, task.scale).best)),
+        Mistake(N_("The limits are millimetres on the map: in metres on the ground they are mm × "
+                   "scale / 1000 (0.5 mm at 1:25,000 is 12.5 m), not the millimetres themselves."),
+                lambda task: _class_name(accuracy.classify(task.check, 1_000).best)),
+        Mistake(N_("mm × scale gives millimetres on the ground: divide by 1000 for metres."),
+                lambda task: _class_name(accuracy.classify(task.check, task.scale * 1000).best)),
+        Mistake(N_("That letter is Decreto 89.817's (printed maps, A-C); the PEC-PCD calls "
+                   "those classes B-D and adds a stricter A."),
+                lambda task: _class_name(accuracy.classify(task.check, task.scale,
+                                                           "Decreto 89.817").best)),
+        Mistake(N_("The standard error is the errors' RMS, sqrt(Σ d_i² / n), not their mean."),
+                _mean_against_ep),
+    ))
+
+
+@declare(PEC_CLASS)
+def check_pec_class(pec_class, check_errors, fit_residuals, scale):
+    """The PEC-PCD class (A-D, or 'none') a product's check points meet at a map scale.
+
+    Parameters
+    ----------
+    pec_class : str
+        The student's answer: "A", "B", "C", "D" or "none".
+    check_errors : (n, 2) array_like
+        The check points' discrepancies (dx, dy), metres on the ground.
+    fit_residuals : (m, 2) array_like
+        The GCPs' fitting residuals (dx, dy), metres: given to the student
+        beside the check points, and a recognised mistake when used instead.
+    scale : float
+        The scale's denominator (25000 for 1:25,000).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``pec_class`` is still ``...``.
+
+    Examples
+    --------
+    >>> errors = [[4.0, 3.0]] * 9 + [[30.0, 40.0]]      # nine of 5 m, one of 50 m
+    >>> check_pec_class("C", errors, np.zeros((6, 2)), 50_000)
+    Correct: class C at 1:50,000: 90 % of the check points within 5.0 m (PEC 40.0 m), RMS 16.5 m (EP 25.0 m).
+    >>> print(check_pec_class("B", errors, np.zeros((6, 2)), 50_000).message)
+    at 1:50,000 the check points fail class B's standard-error test.
+    """  # noqa: E501  (a doctest's expected line)
+    generic = _(PEC_CLASS.general)
+    listed = _listed(_PEC_ANSWERS, repr)
+    if pec_class is None:
+        return Verdict(False, _("`pec_class` is None: for a product that meets no class, write "
+                                "the string 'none'; a function without `return` also gives "
+                                "None."), generic)
+    try:
+        pec_class = _require(pec_class, "pec_class")
+    except _WrongForm as form:
+        return form.verdict(generic)
+    if not isinstance(pec_class, (str, np.str_)):
+        return Verdict(False, _("`pec_class` is a {kind}, not a class: the check needs one of "
+                                "{listed}, a string.").format(kind=type(pec_class).__name__,
+                                                              listed=listed), generic)
+    pec_class = str(pec_class)
+    if pec_class not in _PEC_ANSWERS:
+        written = pec_class.strip().upper().removeprefix("CLASS").strip()
+        if written in ("A", "B", "C", "D") or written == "NONE":
+            wanted = written if written != "NONE" else "none"
+            return Verdict(False, _("{value!r} is not written as the check needs it: write "
+                                    "{wanted!r}, as in {listed}.").format(
+                                        value=pec_class, wanted=wanted, listed=listed), generic)
+        return Verdict(False, _("{value!r} is not a PEC-PCD class: the answer is one of "
+                                "{listed}.").format(value=pec_class, listed=listed), generic)
+    task = PEC_CLASS.task(check_errors=check_errors, fit_residuals=fit_residuals, scale=scale)
+    result, right = task.result, task.right
+    where = _("1:{scale:,.0f}").format(scale=result.scale)
+    if pec_class == right:
+        if right == "none":
+            return Verdict(True, _("no class at {where}: the check points fail class D's tests."
+                                   ).format(where=where))
+        pec, ep = result.thresholds[right]
+        return Verdict(True, _("class {name} at {where}: 90 % of the check points within "
+                               "{p90:.1f} m (PEC {pec:.1f} m), RMS {rms:.1f} m (EP {ep:.1f} m)."
+                               ).format(name=right, where=where, p90=result.percentile_90,
+                                        pec=pec, rms=result.rms, ep=ep))
+    hints = PEC_CLASS.hints(pec_class, task, lambda answer, wrong: answer == wrong)
+    if pec_class == "none":
+        message = _("the check points meet a class at {where}: 'none' is too strict.").format(
+            where=where)
+    elif right == "none" or _PEC_ANSWERS.index(pec_class) < _PEC_ANSWERS.index(right):
+        failed = [_("90 % test") if not result.pec_test[pec_class] else "",
+                  _("standard-error test") if not result.ep_test[pec_class] else ""]
+        message = _("at {where} the check points fail class {name}'s {tests}.").format(
+            where=where, name=pec_class, tests=_(" and ").join(t for t in failed if t))
+    else:
+        message = _("the check points meet class {name} at {where}, but also a stricter class."
+                    ).format(name=pec_class, where=where)
+    return Verdict(False, message, _first_hint(hints, PEC_CLASS.general))
