@@ -5,19 +5,25 @@ distortion, a gain and offset or a segment matching that we chose, tell
 whether it found the right answer.
 """
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import affine
 import numpy as np
+from rasterio.warp import transform as warp_transform
 
 from . import data
+from ._checks import as_integer, as_number, as_points, as_shape
+from ._i18n import _
+from .distortion import EARTH_RADIUS_KM, SystematicDistortion
+from .errors import GridError, ModelError
 from .gcp import GCPSet
 from .matching import Mesh
 from .resample import interpolate
 
 __all__ = [
     "ContrastPair", "contrast_pair", "DistortedPair", "distorted_pair", "Landscape",
-    "two_date_landscape", "synthetic_meshes",
+    "two_date_landscape", "synthetic_meshes", "RawSensor", "ControlPoints", "RawScene",
+    "raw_scene",
 ]
 
 
@@ -420,3 +426,480 @@ def synthetic_meshes(n=8, centroid_noise=1.0, area_noise=0.10, seed=0, shrink=No
         radius = np.sqrt(areas[index] / np.pi)
         adjustment_centroids[where] += radius * (1 - share) * np.array([1.0, 0.0])
     return Mesh(centroids, areas), Mesh(adjustment_centroids, adjustment_areas), order + 1
+
+
+# -- Raw (level 1A) geometry: chapter 1's sensor model over the Olinda DEM ------
+
+class RawSensor:
+    """The geometry of a raw pushbroom scene: chapter 1's sensor model placed on a map.
+
+    A :class:`rsgeo.distortion.SystematicDistortion` with view geometry maps
+    its true grid (the ground in the orbit's frame: columns across track,
+    rows along it, in nadir pixels, nadir at the grid's centre column) to the
+    raw image, with the Earth-rotation skew, the attitude and the
+    curved-Earth view angles of chapter 1. This class adds what a map needs:
+
+    * the orbit's frame on the map: the track heads ``heading_deg`` west of
+      south (a descending pass; the angle of
+      :func:`rsgeo.distortion.track_angle`), columns run across it towards
+      the east, and ``centre_xy`` lies ``offset_km`` across the track from
+      nadir, on the grid's middle row;
+    * relief: a point at height h is seen along the line of sight that meets
+      the sphere of radius R + h there; the model receives the point of the
+      datum (radius R) on the same line of sight, so a high point lands
+      farther from nadir, by about h·tan z (z its view zenith angle,
+      :func:`rsgeo.terrain.relief_displacement`).
+
+    Heights are ellipsoidal, on a sphere of radius
+    ``rsgeo.distortion.EARTH_RADIUS_KM`` (6371 km); the map's metres are taken as
+    ground metres (a UTM scale factor near 1).
+
+    Parameters
+    ----------
+    distortion : rsgeo.distortion.SystematicDistortion
+        With ``view_altitude_km``, ``nadir_pixel_km`` and ``shape`` (the raw
+        image's rows and columns) set; a negative ``roll_deg`` points the
+        camera towards the east.
+    centre_xy : (float, float)
+        Map point (m) at ``offset_km`` from the nadir track on the grid's middle row.
+    heading_deg : float
+        Angle of the track west of south (degrees).
+    offset_km : float
+        Ground distance across the track from nadir to ``centre_xy`` (km),
+        positive to the east; the ground's, whatever the model's roll says.
+
+    Raises
+    ------
+    ValueError
+        If the distortion has no view geometry or no shape.
+
+    Examples
+    --------
+    >>> from rsgeo.distortion import SystematicDistortion, ground_distance
+    >>> model = SystematicDistortion(roll_deg=-20.0, view_altitude_km=778.0,
+    ...                              nadir_pixel_km=0.01, shape=(100, 100))
+    >>> sensor = RawSensor(model, (5000.0, 9000.0), 8.6, ground_distance(20.0, 778.0))
+    >>> col, row = sensor.project(5000.0, 9000.0, 0.0)
+    >>> round(float(col), 6), round(float(row), 6)
+    (50.0, 50.0)
+    """
+
+    def __init__(self, distortion, centre_xy, heading_deg, offset_km):
+        if not isinstance(distortion, SystematicDistortion):
+            raise TypeError(_("distortion must be a SystematicDistortion, got {kind}").format(
+                kind=type(distortion).__name__))
+        if distortion.view_altitude_km is None or distortion.shape is None:
+            raise ModelError(_("a raw scene's distortion needs view geometry and a shape: give "
+                               "view_altitude_km, nadir_pixel_km and shape=(rows, cols)"))
+        self.distortion = distortion
+        self.centre_xy = (as_number(centre_xy[0], "centre_xy[0]"),
+                          as_number(centre_xy[1], "centre_xy[1]"))
+        self.heading_deg = as_number(heading_deg, "heading_deg", -90, 90)
+        self.offset_km = as_number(offset_km, "offset_km")
+
+    def __repr__(self):
+        return (f"RawSensor(heading {self.heading_deg:.2f}° west of south, "
+                f"{self.offset_km:.1f} km across track, image {self.distortion.shape})")
+
+    @property
+    def shape(self):
+        """(rows, cols) of the raw image.
+
+        Returns
+        -------
+        tuple of int
+        """
+        return tuple(self.distortion.shape)
+
+    def _frame(self):
+        angle = np.radians(self.heading_deg)
+        return np.cos(angle), np.sin(angle)
+
+    def project(self, x, y, h):
+        """Raw-image (col, row) of map points (x, y) at ellipsoidal height h.
+
+        Parameters
+        ----------
+        x, y : array_like
+            Map coordinates (m).
+        h : array_like
+            Ellipsoidal height (m); broadcast with x and y.
+
+        Returns
+        -------
+        col, row : ndarray
+            GDAL's pixel coordinates of the raw image.
+
+        Raises
+        ------
+        ValueError
+            If a value is not finite or a point is beyond the horizon.
+        """
+        x, y, h = np.broadcast_arrays(*(_finite_array(v, name) for v, name in
+                                        ((x, "x"), (y, "y"), (h, "h"))))
+        cos, sin = self._frame()
+        dx, dy = x - self.centre_xy[0], y - self.centre_xy[1]
+        across, along = dx * cos - dy * sin, -dx * sin - dy * cos        # metres
+        radius = EARTH_RADIUS_KM
+        orbit = radius + self.distortion.view_altitude_km
+        alpha = (self.offset_km + across / 1000) / radius
+        raised = radius + h / 1000
+        look = np.arctan2(raised * np.sin(alpha), orbit - raised * np.cos(alpha))
+        sine = orbit / radius * np.sin(look)
+        if np.any(np.abs(sine) >= 1):
+            raise ModelError(_("a point is beyond the horizon of the sensor"))
+        datum = np.arcsin(sine) - look                  # the datum point on the same ray
+        rows, cols = self.shape
+        pixel = self.distortion.nadir_pixel_km
+        true = np.column_stack([(datum * radius / pixel + cols / 2).ravel(),
+                                (along / 1000 / pixel + rows / 2).ravel()])
+        image = self.distortion(true)
+        return image[:, 0].reshape(x.shape), image[:, 1].reshape(x.shape)
+
+    def ground(self, col, row, h):
+        """Map (x, y) seen at raw-image (col, row) if the ground there is at height h.
+
+        Parameters
+        ----------
+        col, row : array_like
+            GDAL pixel coordinates of the raw image.
+        h : array_like
+            Ellipsoidal height (m).
+
+        Returns
+        -------
+        x, y : ndarray
+
+        Raises
+        ------
+        ValueError
+            If a value is not finite, or as the distortion's inverse.
+        """
+        col, row, h = np.broadcast_arrays(*(_finite_array(v, name) for v, name in
+                                            ((col, "col"), (row, "row"), (h, "h"))))
+        x, y = self._on_sphere(self._true_grid(col, row), h.ravel())
+        return x.reshape(col.shape), y.reshape(col.shape)
+
+    def _true_grid(self, col, row):
+        """The distortion's true grid (datum) positions of image points: (n, 2)."""
+        return self.distortion.inverse()(np.column_stack([np.ravel(col), np.ravel(row)]))
+
+    def _on_sphere(self, true, h):
+        """Map (x, y) of true-grid positions raised to heights h (1-D arrays)."""
+        rows, cols = self.shape
+        pixel = self.distortion.nadir_pixel_km
+        radius = EARTH_RADIUS_KM
+        orbit = radius + self.distortion.view_altitude_km
+        datum = (true[:, 0] - cols / 2) * pixel / radius
+        along = (true[:, 1] - rows / 2) * pixel * 1000
+        look = np.arctan2(radius * np.sin(datum), orbit - radius * np.cos(datum))
+        raised = radius + h / 1000
+        reach = raised ** 2 - (orbit * np.sin(look)) ** 2
+        if np.any(reach < 0):
+            raise ModelError(_("a line of sight misses the sphere of the given height"))
+        distance = orbit * np.cos(look) - np.sqrt(reach)
+        alpha = np.arctan2(distance * np.sin(look), orbit - distance * np.cos(look))
+        across = (alpha * radius - self.offset_km) * 1000
+        cos, sin = self._frame()
+        return (self.centre_xy[0] + across * cos - along * sin,
+                self.centre_xy[1] - across * sin - along * cos)
+
+    def ground_on_dem(self, col, row, dem, dem_transform, iterations=10):
+        """Where the lines of sight of (col, row) meet a DEM (fixed-point iteration).
+
+        Parameters
+        ----------
+        col, row : array_like
+        dem : 2-D array
+            Ellipsoidal heights (m).
+        dem_transform : affine.Affine
+            In the sensor's map coordinates.
+        iterations : int
+            Steps of h -> (x, y) -> h; each shrinks the error by the terrain's
+            slope times tan z, so a few suffice on gentle terrain.
+
+        Returns
+        -------
+        x, y, h : ndarray
+
+        Raises
+        ------
+        ValueError
+            If a line of sight leaves the DEM.
+        """
+        from .terrain import dem_height
+
+        iterations = as_integer(iterations, "iterations", low=1)
+        col, row = np.broadcast_arrays(_finite_array(col, "col"), _finite_array(row, "row"))
+        true = self._true_grid(col, row)          # the line of sight: once, whatever the height
+        h = np.zeros(col.size)
+        for _iteration in range(iterations):
+            x, y = self._on_sphere(true, h)
+            h = dem_height(dem, dem_transform, x, y)
+        x, y = self._on_sphere(true, h)
+        return x.reshape(col.shape), y.reshape(col.shape), h.reshape(col.shape)
+
+    def with_knowledge_errors(self, roll_deg=0.0, pitch_deg=0.0, yaw_deg=0.0,
+                              yaw_rate_deg_per_line=0.0, across_km=0.0, along_km=0.0,
+                              radial_km=0.0):
+        """The sensor a ground station believes in: its attitude and position off by these.
+
+        The ground does not move (``centre_xy``, ``heading_deg`` and
+        ``offset_km`` are kept); the model's platform data change as in
+        :meth:`rsgeo.distortion.SystematicDistortion.with_knowledge_errors`,
+        and ``yaw_rate_deg_per_line`` adds a drift of the yaw during the scene.
+
+        Parameters
+        ----------
+        roll_deg, pitch_deg, yaw_deg, yaw_rate_deg_per_line : float
+            Attitude knowledge errors (degrees; degrees per line).
+        across_km, along_km, radial_km : float
+            Ephemeris knowledge errors (km).
+
+        Returns
+        -------
+        RawSensor
+
+        Raises
+        ------
+        ValueError
+            If a value is not a finite number.
+        """
+        known = self.distortion.with_knowledge_errors(roll_deg, pitch_deg, yaw_deg, across_km,
+                                                      along_km, radial_km)
+        rate = known.yaw_rate_deg_per_line + as_number(yaw_rate_deg_per_line,
+                                                       "yaw_rate_deg_per_line")
+        known = replace(known, yaw_rate_deg_per_line=float(rate))
+        return RawSensor(known, self.centre_xy, self.heading_deg, self.offset_km)
+
+
+def _finite_array(values, name):
+    array = np.asarray(values, dtype=np.float64)
+    if not np.isfinite(array).all():
+        raise ModelError(_("{name} holds NaN or infinite values; every value must be finite")
+                         .format(name=name))
+    return array
+
+
+@dataclass
+class ControlPoints:
+    """Points of a raw scene with their ground and image positions (GCPs or check points).
+
+    Attributes
+    ----------
+    map_xy : ndarray, shape (n, 2)
+        Map coordinates (m) in the scene's CRS.
+    lon, lat : ndarray, shape (n,)
+        WGS 84 degrees.
+    height : ndarray, shape (n,)
+        Ellipsoidal heights (m), from the scene's DEM.
+    image_xy : ndarray, shape (n, 2)
+        Measured (col, row): the true position plus the measurement noise.
+    true_image_xy : ndarray, shape (n, 2)
+        Where the sensor really records them.
+    """
+
+    map_xy: np.ndarray
+    lon: np.ndarray
+    lat: np.ndarray
+    height: np.ndarray
+    image_xy: np.ndarray
+    true_image_xy: np.ndarray
+
+    def __len__(self):
+        return len(self.map_xy)
+
+    @property
+    def rpc_gcps(self):
+        """The points as :func:`rsgeo.terrain.refine_rpc` takes them (measured positions).
+
+        Returns
+        -------
+        dict of ndarray
+            ``lon``, ``lat``, ``height``, ``col``, ``row``.
+        """
+        return {"lon": self.lon, "lat": self.lat, "height": self.height,
+                "col": self.image_xy[:, 0], "row": self.image_xy[:, 1]}
+
+
+@dataclass
+class RawScene:
+    """A raw (level 1A) scene with its true geometry, a DEM and control points on demand.
+
+    Attributes
+    ----------
+    image : ndarray or None
+        The raw image (uint8, rows along track), None when not simulated.
+    sensor : RawSensor
+        The true geometry.
+    dem : ndarray
+        Ellipsoidal heights (m) of the Olinda DEM (EGM96 heights plus the geoid undulation).
+    dem_transform : affine.Affine
+    crs : str
+        The map's CRS (SIRGAS 2000 / UTM 25S).
+    latitude_deg : float
+        Latitude of the scene's centre.
+    skew_per_line : float
+        Earth-rotation skew in nadir pixels per line (:func:`rsgeo.distortion.skew_per_line`).
+    off_nadir_deg : float
+        The camera's pointing (roll) across the track.
+    bounds : tuple of float
+        (west, south, east, north) of the ground the image sees (m).
+    height_range : (float, float)
+        The DEM's lowest and highest ellipsoidal height (m).
+    """
+
+    image: np.ndarray
+    sensor: RawSensor
+    dem: np.ndarray
+    dem_transform: affine.Affine
+    crs: str
+    latitude_deg: float
+    skew_per_line: float
+    off_nadir_deg: float
+    bounds: tuple
+    height_range: tuple
+
+    def control_points(self, points, noise_px=0.0, seed=0, margin=0.05):
+        """Points of the scene: their ground on the DEM and their measured image positions.
+
+        Parameters
+        ----------
+        points : int or (n, 2) array_like
+            How many, drawn uniformly over the image inside ``margin``, or
+            their true image (col, row).
+        noise_px : float
+            Standard deviation of the measurement error added to each image
+            coordinate (pixels), >= 0.
+        seed : int
+            Seed of the positions and the noise.
+        margin : float
+            Share of the image's size left out at each edge, in [0, 0.5).
+
+        Returns
+        -------
+        ControlPoints
+
+        Raises
+        ------
+        ValueError
+            For a count below 1, points that are not (n, 2) finite numbers,
+            a negative noise or a margin outside [0, 0.5).
+        """
+        rng = np.random.default_rng(seed)
+        rows, cols = self.sensor.shape
+        margin = as_number(margin, "margin", 0, 0.4999)
+        noise_px = as_number(noise_px, "noise_px", low=0)
+        if np.ndim(points) == 0:
+            count = as_integer(points, "points", low=1)
+            true = np.column_stack([rng.uniform(margin * cols, (1 - margin) * cols, count),
+                                    rng.uniform(margin * rows, (1 - margin) * rows, count)])
+        else:
+            true = as_points(points, "points").copy()
+        x, y, h = self.sensor.ground_on_dem(true[:, 0], true[:, 1], self.dem,
+                                            self.dem_transform)
+        lon, lat = (np.asarray(v, dtype=np.float64)
+                    for v in warp_transform(self.crs, "EPSG:4326", x, y))
+        measured = true + rng.normal(0.0, noise_px, true.shape)
+        return ControlPoints(np.column_stack([x, y]), lon, lat, h, measured, true)
+
+
+def raw_scene(shape=(600, 560), nadir_pixel_m=10.0, off_nadir_deg=30.0, altitude_km=778.0,
+              inclination_deg=98.5, simulate=True):
+    """A raw pushbroom scene of Olinda: heading, Earth-rotation skew, view angles, relief.
+
+    Chapter 1's sensor model (:class:`rsgeo.distortion.SystematicDistortion`,
+    curved Earth) at CBERS's altitude and inclination, on a descending pass
+    over the shipped Olinda DEM, pointed ``off_nadir_deg`` east of the track:
+    the track heads :func:`rsgeo.distortion.track_angle` west of south, each
+    line is shifted west by the Earth's rotation
+    (:func:`rsgeo.distortion.skew_per_line`), pixels grow away from nadir, and
+    the DEM's relief moves every point by about h·tan z (:class:`RawSensor`).
+    The DEM's heights (EGM96) are made ellipsoidal with the shipped geoid
+    (:func:`rsgeo.heights.to_ellipsoidal`), as an RPC takes them. The image,
+    when simulated, samples the Landsat 7 band of Olinda (28.5 m, bilinear)
+    where each pixel's line of sight meets the DEM. The scene's centre looks
+    at the DEM's centre.
+
+    Parameters
+    ----------
+    shape : (int, int)
+        Rows and columns of the raw image; its footprint must stay inside the
+        DEM (10 km × 10 km).
+    nadir_pixel_m : float
+        Ground size of a pixel at nadir (m).
+    off_nadir_deg : float
+        Pointing across the track (degrees, 0 to 45).
+    altitude_km, inclination_deg : float
+        The orbit (CBERS: 778 km, 98.5°).
+    simulate : bool
+        Simulate the image (a few seconds), or only the geometry.
+
+    Returns
+    -------
+    RawScene
+
+    Raises
+    ------
+    ValueError
+        For a shape, pixel size or angle out of range, or a footprint that
+        leaves the DEM.
+
+    Examples
+    --------
+    >>> scene = raw_scene(shape=(60, 50), nadir_pixel_m=100.0, simulate=False)
+    >>> round(scene.sensor.heading_deg, 1), scene.image is None
+    (8.6, True)
+    """
+    from rasterio.crs import CRS
+
+    from . import distortion, heights
+
+    shape = as_shape(shape)
+    pixel_km = as_number(nadir_pixel_m, "nadir_pixel_m", low=1e-3, high=1e4) / 1000
+    off_nadir_deg = as_number(off_nadir_deg, "off_nadir_deg", 0, 45)
+    dem = data.load("olinda_dem")
+    ground = data.load("olinda_l7_b4")
+    crs = CRS.from_user_input(ground.crs).to_string()
+    west, south, east, north = dem.bounds
+    centre = ((west + east) / 2, (south + north) / 2)
+    (lon,), (lat,) = warp_transform(crs, "EPSG:4326", [centre[0]], [centre[1]])
+    cols, rows = np.meshgrid(np.arange(dem.array.shape[1]) + 0.5,
+                             np.arange(dem.array.shape[0]) + 0.5)
+    dem_x, dem_y = dem.transform @ (cols, rows)
+    dem_lon, dem_lat = (np.asarray(v).reshape(dem_x.shape) for v in warp_transform(
+        crs, "EPSG:4326", dem_x.ravel(), dem_y.ravel()))
+    ellipsoidal = heights.to_ellipsoidal(dem.array, dem_lon, dem_lat, "EGM96")
+    skew = distortion.skew_per_line(lat, shape[0], pixel_km, altitude_km, inclination_deg)
+    model = distortion.SystematicDistortion(skew_per_line=skew, roll_deg=-off_nadir_deg,
+                                            view_altitude_km=altitude_km,
+                                            nadir_pixel_km=pixel_km, shape=shape)
+    heading = distortion.track_angle(lat, inclination_deg)
+    offset = float(distortion.ground_distance(off_nadir_deg, altitude_km))
+    sensor = RawSensor(model, centre, heading, offset)
+    for _iteration in range(3):              # move the ground so that the image centre sees it
+        seen = sensor.ground(shape[1] / 2, shape[0] / 2, 0.0)
+        sensor = RawSensor(model, (sensor.centre_xy[0] + centre[0] - float(seen[0]),
+                                   sensor.centre_xy[1] + centre[1] - float(seen[1])),
+                           heading, offset)
+    low, high = float(ellipsoidal.min()), float(ellipsoidal.max())
+    edge = np.linspace(0, 1, 9)
+    border_c = np.concatenate([edge, np.ones(9), edge[::-1], np.zeros(9)]) * shape[1]
+    border_r = np.concatenate([np.zeros(9), edge, np.ones(9), edge[::-1]]) * shape[0]
+    corners = [sensor.ground(border_c, border_r, level) for level in (low, high)]
+    xs = np.concatenate([c[0] for c in corners])
+    ys = np.concatenate([c[1] for c in corners])
+    bounds = (float(xs.min()), float(ys.min()), float(xs.max()), float(ys.max()))
+    if bounds[0] < west or bounds[2] > east or bounds[1] < south or bounds[3] > north:
+        raise GridError(_("the raw image's footprint ({w:.0f} to {e:.0f} m east, {s:.0f} to "
+                          "{n:.0f} m north) leaves the DEM; use fewer rows and columns or "
+                          "smaller pixels").format(w=bounds[0], e=bounds[2], s=bounds[1],
+                                                   n=bounds[3]))
+    image = None
+    if simulate:
+        r, c = np.mgrid[0:shape[0], 0:shape[1]] + 0.5
+        x, y, _h = sensor.ground_on_dem(c, r, ellipsoidal, dem.transform)
+        gc, gr = ~ground.transform @ (x, y)
+        image = interpolate(ground.array, gc, gr, "bilinear", nodata=None)
+    return RawScene(image, sensor, ellipsoidal, dem.transform, crs, float(lat), float(skew),
+                    float(off_nadir_deg), bounds, (low, high))
