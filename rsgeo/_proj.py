@@ -11,6 +11,8 @@ needs a grid goes through :func:`transformer` here, never through the network
 from functools import lru_cache
 from pathlib import Path
 
+__all__ = ["GRIDS", "transformer", "operations"]
+
 GRIDS = Path(__file__).resolve().parent / "data" / "proj"
 
 
@@ -29,8 +31,10 @@ def _search_shipped_grids():
 def transformer(src_wkt, dst_wkt):
     """A pyproj Transformer from one CRS (as WKT) to another, longitude/easting first.
 
-    PROJ picks, point by point, the most accurate operation whose grids it finds; the one it
-    used is ``transformer(...).get_last_used_operation()`` after a call.
+    PROJ picks, point by point, the most accurate operation whose area of use (its bounding
+    box) holds the point and whose grids it finds, and falls back to the next where a grid
+    has no value; the one it used is ``transformer(...).get_last_used_operation()`` after a
+    call. pyproj's Transformer is thread-safe (one PROJ context per thread).
     """
     from pyproj import Transformer
 
@@ -39,8 +43,18 @@ def transformer(src_wkt, dst_wkt):
 
 
 def operations(src_wkt, dst_wkt):
-    """Every operation PROJ knows from one CRS to another, as a pyproj TransformerGroup."""
+    """Every operation PROJ knows from one CRS to another, as a pyproj TransformerGroup.
+
+    Its ``transformers`` are those PROJ can apply here, its ``unavailable_operations`` those
+    whose grids it does not find (rsgeo.georef.transformations reports which; pyproj's
+    warning that the best one is missing is left out).
+    """
+    import warnings
+
     from pyproj.transformer import TransformerGroup
 
     _search_shipped_grids()
-    return TransformerGroup(src_wkt, dst_wkt, always_xy=True)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", "Best transformation is not available",
+                                UserWarning)
+        return TransformerGroup(src_wkt, dst_wkt, always_xy=True)

@@ -126,8 +126,10 @@ class GCPSet:  # numpydoc ignore=PR02
     def to_crs(self, crs):
         """The same GCPs with their map coordinates transformed to ``crs`` by PROJ.
 
-        Image coordinates, flags, ids and notes are kept. PROJ picks the datum
-        transformation GDAL would (SAD69 -> SIRGAS 2000 offline: EPSG:15485).
+        Image coordinates, flags, ids and notes are kept. The datum transformation
+        is :func:`rsgeo.georef.transform_points`' (the same PROJ with rsgeo's grids:
+        SAD69 -> SIRGAS 2000 by IBGE's grid, EPSG:5528, where it applies); points
+        outside the CRSs' areas of use are not refused.
 
         Parameters
         ----------
@@ -144,13 +146,15 @@ class GCPSet:  # numpydoc ignore=PR02
         CRSError
             If this set has no CRS, or PROJ does not know either CRS.
         """
-        from rasterio.warp import transform
+        from ._proj import transformer  # georef's PROJ, not GDAL's: it finds the grids
 
         if self.crs is None:
             raise CRSError("these GCPs have no CRS (crs=None): set the CRS their map "
                              "coordinates are in before transforming them")
         source, target = _as_crs(self.crs, "the GCPs' crs"), _as_crs(crs, "crs")
-        xs, ys = transform(source, target, self.map_xy[:, 0], self.map_xy[:, 1])
+        xs, ys = transformer(source.to_wkt(version="WKT2_2019"),
+                             target.to_wkt(version="WKT2_2019")).transform(
+                                 self.map_xy[:, 0], self.map_xy[:, 1])
         return GCPSet(np.column_stack([xs, ys]), self.image_xy.copy(), self.enabled.copy(),
                       list(self.ids), target.to_wkt(), list(self.notes))
 

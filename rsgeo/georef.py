@@ -3,10 +3,12 @@
 Map coordinates only mean something with their CRS: the CBERS scenes shipped
 with rsgeo are in SAD69 / UTM, Brazil's datum since 2015 is SIRGAS 2000, and the
 same point has UTM coordinates tens of metres apart in the two. This module
-moves points and rasters between CRSs through PROJ (via rasterio, the PROJ that
-GDAL itself uses), and runs the whole correction a user makes in QGIS's
-Georeferencer or with ``gdalwarp``: fit a model to the GCPs, choose an output
-grid, warp, and save a GeoTIFF.
+moves points and rasters between CRSs through PROJ (pyproj, with the datum grids
+rsgeo ships on its search path and the network off: IBGE's SAD69 and SAD69(96)
+grids), names the transformation PROJ applied, reads a shift grid itself to check
+PROJ, and runs the whole correction a user makes in QGIS's Georeferencer or with
+``gdalwarp``: fit a model to the GCPs, choose an output grid, warp, and save a
+GeoTIFF.
 
 Examples
 --------
@@ -16,8 +18,11 @@ Examples
 True
 """
 
+import os
 import re
 import warnings
+from functools import lru_cache
+from typing import NamedTuple
 
 import numpy as np
 
@@ -25,11 +30,12 @@ from . import transforms as _transforms
 from ._checks import as_crs, as_output_shape, as_points, check_choice
 from ._i18n import _
 from .data import Raster
-from .errors import CRSError, DataError, ExtrapolationWarning, GCPError
+from .errors import CRSError, DataError, ExtrapolationWarning, GCPError, GridError
 from .gcp import GCPSet
 
-__all__ = ["as_crs", "transform_points", "datum_shift", "geocentric_translation",
-           "CRSMapping", "reproject", "georeference"]
+__all__ = ["as_crs", "transform_points", "datum_shift", "DatumShift", "transformations",
+           "Transformation", "SHIFT_GRIDS", "ShiftGrid", "read_shift_grid", "grid_shift",
+           "geocentric_translation", "CRSMapping", "reproject", "georeference"]
 
 # EPSG:15485, "SAD69 to SIRGAS 2000 (1)": geocentric translations in metres (accuracy 5 m)
 SAD69_TO_SIRGAS2000 = (-67.35, 3.88, -38.22)
@@ -170,33 +176,361 @@ def _kind_and_unit(crs):
     return kind, unit, factor
 
 
-def _transform(points, src, dst):
-    """PROJ's transformation of finite (n, 2) points between two checked CRSs, unchecked area."""
-    from rasterio.warp import transform
+# -- Datum transformations: PROJ (pyproj) with the grids rsgeo ships --------------------------
 
-    if src == dst:
-        return points.copy()
-    _refuse_far_coordinates(points, src)
+class Transformation(NamedTuple):
+    """A coordinate operation PROJ knows between two CRSs, as rsgeo names it.
+
+    Attributes
+    ----------
+    name : str
+        The datum steps' names in PROJ's database, e.g. "SAD69 to SIRGAS 2000 (2)"
+        ("Inverse of ..." when PROJ runs one backwards; several joined by " + ").
+    codes : tuple of str
+        Their registry codes, e.g. ``("EPSG:5528",)``; empty for PROJ's "ballpark" offset,
+        which is no published transformation.
+    accuracy : float or None
+        The accuracy the registry states, in metres; None when it states none.
+    grids : tuple of str
+        The grid files it needs (``"br_ibge_SAD69_003.tif"``); empty for parameters.
+    available : bool
+        Whether PROJ finds every grid here (rsgeo's shipped grids, PROJ's own folder).
+    area : tuple or None
+        Its area of use as PROJ checks it, a box (west, south, east, north) in degrees.
+    pipeline : str
+        The whole operation as a PROJ string, shipped grids by their absolute path: give it
+        to GDAL as ``gdalwarp -ct "..."`` or the warp option ``COORDINATE_OPERATION`` to make
+        GDAL apply the same operation.
+    """
+
+    name: str
+    codes: tuple
+    accuracy: float | None
+    grids: tuple
+    available: bool
+    area: tuple | None
+    pipeline: str
+
+    def __str__(self):
+        code = " + ".join(self.codes) or _("no registry code")
+        accuracy = (_("accuracy unknown") if self.accuracy is None
+                    else _("accuracy {metres:g} m").format(metres=self.accuracy))
+        grids = (_(", grid {grids}").format(grids=", ".join(self.grids)) if self.grids
+                 else "")
+        return f"{self.name} ({code}; {accuracy}{grids})"
+
+
+def _wkt(crs):
+    """A rasterio CRS as WKT2, which keeps its EPSG identity for pyproj's PROJ."""
+    return crs.to_wkt(version="WKT2_2019")
+
+
+def _authority_code(identifier):
+    """'EPSG:5528' from PROJ's id {'authority': 'INVERSE(DERIVED_FROM(EPSG))', 'code': 5528}."""
+    if not identifier:
+        return None
+    authority = str(identifier.get("authority", ""))
+    while (inner := re.fullmatch(r"[A-Z_]+\((.*)\)", authority)) is not None:
+        authority = inner.group(1)          # INVERSE(...) and DERIVED_FROM(...) name the source
+    return f"{authority}:{identifier.get('code')}"
+
+
+def _describe(operation, available=True):
+    """A :class:`Transformation` from a pyproj Transformer or CoordinateOperation."""
+    steps = list(operation.operations or []) or [operation]
+    datum_steps = [step for step in steps
+                   if step.to_json_dict().get("type") != "Conversion"] or steps
+    names = [step.name for step in datum_steps]
+    codes = tuple(code for code in (_authority_code(step.to_json_dict().get("id"))
+                                    for step in datum_steps) if code is not None)
+    found = [grid for step in steps for grid in getattr(step, "grids", [])]
+    grids = tuple(dict.fromkeys(grid.short_name for grid in found))
     try:
-        xs, ys = transform(src, dst, points[:, 0], points[:, 1])
-    except Exception as error:        # GDAL's CPLE_AppDefinedError "Reprojection failed"
+        pipeline = operation.to_proj4() or ""
+    except Exception:                 # pyproj's ProjError: an operation PROJ cannot write
+        pipeline = ""
+    for grid in found:
+        if grid.available and grid.full_name:
+            pipeline = pipeline.replace(f"={grid.short_name}", f"={grid.full_name}")
+    accuracy = float(operation.accuracy)
+    box = operation.area_of_use
+    area = None if box is None else (box.west, box.south, box.east, box.north)
+    return Transformation(" + ".join(names), codes, accuracy if accuracy >= 0 else None, grids,
+                          bool(available and all(grid.available for grid in found)), area,
+                          pipeline)
+
+
+@lru_cache(maxsize=64)
+def _candidates(src_wkt, dst_wkt):
+    """PROJ's operations between two CRSs: ([(Transformation, Transformer)] available, most
+    accurate first, unknown accuracy last; [Transformation] whose grids are missing)."""
+    from . import _proj
+
+    try:
+        group = _proj.operations(src_wkt, dst_wkt)
+    except Exception as error:        # pyproj's ProjError
+        raise CRSError(_("PROJ knows no operation between these CRSs ({error})").format(
+            error=error)) from None
+    usable = [(_describe(transformer), transformer) for transformer in group.transformers]
+    usable.sort(key=lambda pair: (pair[0].accuracy is None, pair[0].accuracy or 0.0))
+    missing = [_describe(operation, available=False)
+               for operation in group.unavailable_operations]
+    return usable, missing
+
+
+def transformations(src_crs, dst_crs):
+    """Every operation PROJ knows from ``src_crs`` to ``dst_crs``, most accurate first.
+
+    PROJ's database (the EPSG registry's transformations and PROJ's own) searched with the
+    grids rsgeo ships (``rsgeo/data/README.md``) and without the network: those whose grids
+    are here first, by their stated accuracy, then those whose grids are not.
+
+    Parameters
+    ----------
+    src_crs, dst_crs : str, int or rasterio.crs.CRS
+        See :func:`as_crs`.
+
+    Returns
+    -------
+    list of Transformation
+        Name, registry codes, stated accuracy (m), grid files, available here or not, and
+        the PROJ pipeline; ``pandas.DataFrame(transformations(...))`` makes a table.
+
+    Raises
+    ------
+    ValueError
+        For a CRS that PROJ does not know.
+
+    Examples
+    --------
+    >>> [t.codes for t in transformations("EPSG:4618", "EPSG:4674")][:2]    # SAD69 -> SIRGAS
+    [('EPSG:5528',), ('EPSG:15485',)]
+    >>> transformations("EPSG:4618", "EPSG:4674")[0].grids
+    ('br_ibge_SAD69_003.tif',)
+    """
+    src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
+    usable, missing = _candidates(_wkt(src), _wkt(dst))
+    missing = sorted(missing, key=lambda t: (t.accuracy is None, t.accuracy or 0.0))
+    return [described for described, _transformer in usable] + missing
+
+
+def _requested_codes(transformation):
+    """The set of registry codes a ``transformation`` argument names."""
+    if isinstance(transformation, Transformation):
+        return frozenset(transformation.codes)
+    items = ([transformation] if isinstance(transformation, (str, int, np.integer))
+             else transformation)
+    try:
+        items = list(items)
+    except TypeError:
+        raise TypeError(_("transformation must be a code such as 'EPSG:15485', a sequence of "
+                          "codes or a Transformation from georef.transformations, got "
+                          "{kind}").format(kind=type(transformation).__name__)) from None
+    codes = set()
+    for item in items:
+        if isinstance(item, (int, np.integer)) and not isinstance(item, bool):
+            codes.add(f"EPSG:{int(item)}")
+        elif isinstance(item, str) and (match := re.fullmatch(r"\s*([A-Za-z_]+):(\d+)\s*",
+                                                              item)):
+            codes.add(f"{match.group(1).upper()}:{int(match.group(2))}")
+        else:
+            raise CRSError(_("transformation {item!r} is not a registry code; give one such as "
+                             "'EPSG:15485' (see georef.transformations)").format(item=item))
+    if not codes:
+        raise CRSError(_("transformation names no code; give one such as 'EPSG:15485'"))
+    return frozenset(codes)
+
+
+def _forced(src, dst, transformation):
+    """(Transformation, pyproj Transformer) of the operation ``transformation`` names."""
+    wanted = _requested_codes(transformation)
+    usable, missing = _candidates(_wkt(src), _wkt(dst))
+    for described, transformer in usable:
+        if frozenset(described.codes) == wanted:
+            return described, transformer
+    for described in missing:
+        if frozenset(described.codes) == wanted:
+            raise CRSError(_(
+                "{name} ({codes}) needs the grid {grids}, which PROJ does not find here; "
+                "rsgeo ships {shipped}, and downloads nothing").format(
+                    name=described.name, codes=" + ".join(described.codes),
+                    grids=", ".join(described.grids),
+                    shipped=", ".join(sorted(path.name for path in _grid_folder().glob("*")))))
+    known = "; ".join(f"{' + '.join(t.codes) or '-'} {t.name}"
+                      for t in [d for d, _t in usable] + missing)
+    raise CRSError(_(
+        "PROJ knows no operation {wanted} from {src} to {dst}; it knows: {known}").format(
+            wanted=" + ".join(sorted(wanted)), src=_crs_name(src), dst=_crs_name(dst),
+            known=known or _("none")))
+
+
+def _grid_folder():
+    from ._proj import GRIDS
+
+    return GRIDS
+
+
+def _check_operation_area(points, src, described):
+    """Refuse points outside the area of use of a transformation asked for by name."""
+    if described.area is None:
+        return
+    lon, lat = _lon_lat(points, src)
+    outside = _outside_area(lon, lat, described.area)
+    if outside.any():
+        first = int(np.flatnonzero(outside)[0])
+        raise CRSError(_(
+            "{count} of {n} points are outside the area of use of {name} ({codes}: longitude "
+            "{west:g} to {east:g}, latitude {south:g} to {north:g}; first: point {first} at "
+            "longitude {lon:.4f}, latitude {lat:.4f}); leave transformation=None for PROJ's "
+            "choice there, or give points inside it").format(
+                count=int(outside.sum()), n=len(points), name=described.name,
+                codes=" + ".join(described.codes) or "-", west=described.area[0],
+                east=described.area[2], south=described.area[1], north=described.area[3],
+                first=first, lon=lon[first], lat=lat[first]))
+
+
+def _apply(transformer, points, src, dst):
+    """(n, 2) points through a pyproj Transformer; a CRSError where PROJ gives no number."""
+    if not len(points):
+        return points.copy()
+    try:
+        with np.errstate(all="ignore"):
+            xs, ys = transformer.transform(points[:, 0], points[:, 1])
+    except Exception as error:        # pyproj's ProjError
         raise CRSError(_("PROJ could not transform the points from {src} to {dst} ({error}); "
                          "give points inside both CRSs' areas of use").format(
                              src=_crs_name(src), dst=_crs_name(dst), error=error)) from None
     result = np.column_stack([xs, ys]).astype(np.float64)
     if not np.isfinite(result).all():
         raise CRSError(_("PROJ could not transform some points from {src} to {dst} "
-                         "(outside the CRS's area of use?)").format(
+                         "(outside the CRS's area of use, or outside a grid's coverage?)").format(
                              src=_crs_name(src), dst=_crs_name(dst)))
     return result
 
 
-def transform_points(points, src_crs, dst_crs, check_area=True):
+def _transform(points, src, dst, transformation=None):
+    """PROJ's transformation of finite (n, 2) points between two checked CRSs, unchecked area.
+
+    PROJ picks, point by point, the most accurate operation whose area of use holds the point
+    and whose grids it finds (``transformation=None``), as ``gdalwarp`` does with the same
+    grids; or applies the one ``transformation`` names.
+    """
+    from . import _proj
+
+    if src == dst:
+        return points.copy()
+    _refuse_far_coordinates(points, src)
+    if transformation is not None:
+        return _apply(_forced(src, dst, transformation)[1], points, src, dst)
+    try:
+        transformer = _proj.transformer(_wkt(src), _wkt(dst))
+    except Exception as error:        # pyproj's ProjError
+        raise CRSError(_("PROJ could not transform the points from {src} to {dst} ({error}); "
+                         "give points inside both CRSs' areas of use").format(
+                             src=_crs_name(src), dst=_crs_name(dst), error=error)) from None
+    return _apply(transformer, points, src, dst)
+
+
+def _used_operations(points, moved, src, dst):
+    """Which operation PROJ applied at each point: (Transformations, (n,) index into them).
+
+    Each operation PROJ could have picked is run on the points, most accurate first; a point
+    is named by the first whose result is PROJ's (the same pipeline gives the same numbers).
+    A point none reproduces is asked of PROJ itself, one by one.
+    """
+    from . import _proj
+
+    usable, _missing = _candidates(_wkt(src), _wkt(dst))
+    used = np.full(len(points), -1)
+    for index, (_described, transformer) in enumerate(usable):
+        todo = np.flatnonzero(used < 0)
+        if not len(todo):
+            break
+        with np.errstate(all="ignore"):
+            xs, ys = transformer.transform(points[todo, 0], points[todo, 1])
+        same = np.isclose(np.column_stack([xs, ys]), moved[todo], rtol=1e-12,
+                          atol=1e-9).all(axis=1)
+        used[todo[same]] = index
+    found = [described for described, _transformer in usable]
+    if (used < 0).any():
+        transformer = _proj.transformer(_wkt(src), _wkt(dst))
+        for k in np.flatnonzero(used < 0):
+            transformer.transform(points[k, 0], points[k, 1])
+            described = _describe(transformer.get_last_used_operation())
+            if described not in found:
+                found.append(described)
+            used[k] = found.index(described)
+    kept = sorted(set(used.tolist()))
+    return tuple(found[k] for k in kept), np.searchsorted(kept, used)
+
+
+class DatumShift(tuple):
+    """How far points move between two datums, and the transformation that moved them.
+
+    A tuple ``(dx, dy, distance)``, so that ``dx, dy, distance = datum_shift(...)`` works, with
+    more attributes than items (as :func:`os.stat` 's result has).
+
+    Attributes
+    ----------
+    dx, dy, distance : ndarray
+        Per point, in the CRSs' units (metres for UTM).
+    transformation : Transformation or None
+        The operation PROJ applied (at most points, when it needed several); None for no
+        points or two equal CRSs.
+    transformations : tuple of Transformation
+        Every operation applied, most points first.
+    used : ndarray of int
+        Per point, its operation's index in ``transformations``.
+    """
+
+    def __new__(cls, dx, dy, distance, transformations=(), used=None):
+        shift = super().__new__(cls, (dx, dy, distance))
+        shift.transformations = tuple(transformations)
+        shift.used = (np.zeros(len(dx), dtype=np.intp) if used is None
+                      else np.asarray(used, dtype=np.intp))
+        return shift
+
+    def __getnewargs__(self):
+        return (*self, self.transformations, self.used)
+
+    dx = property(lambda self: self[0], doc="Easting (or longitude) change per point.")
+    dy = property(lambda self: self[1], doc="Northing (or latitude) change per point.")
+    distance = property(lambda self: self[2], doc="sqrt(dx² + dy²) per point.")
+
+    @property
+    def transformation(self):
+        """The operation applied at most points.
+
+        Returns
+        -------
+        Transformation or None
+            None for no points or two equal CRSs.
+        """
+        return self.transformations[0] if self.transformations else None
+
+    def __repr__(self):
+        if not self.transformations:
+            named = "none"
+        elif len(self.transformations) == 1:
+            named = str(self.transformation)
+        else:
+            counts = np.bincount(self.used, minlength=len(self.transformations))
+            named = "; ".join(f"{t} at {c} points"
+                              for t, c in zip(self.transformations, counts))
+        return (f"DatumShift({len(self.dx)} points, mean distance "
+                f"{float(np.mean(self.distance)) if len(self.dx) else 0.0:.4g}; "
+                f"transformation: {named})")
+
+
+def transform_points(points, src_crs, dst_crs, check_area=True, transformation=None):
     """Map coordinates (x, y) moved from one CRS to another by PROJ.
 
-    PROJ picks the transformation (datum shift) it would pick for ``gdalwarp``
-    with the grids it has; without network access and without the SAD69
-    grid, SAD69 -> SIRGAS 2000 is EPSG:15485, three geocentric translations.
+    PROJ picks, point by point, the most accurate transformation (datum shift) whose area of
+    use holds the point and whose grids it finds: rsgeo puts its shipped grids on PROJ's
+    search path (offline: nothing is downloaded), so SAD69 -> SIRGAS 2000 is IBGE's grid
+    (EPSG:5528, accuracy 1 m) inside its area and EPSG:15485 (three geocentric translations,
+    5 m) elsewhere in Brazil. :func:`datum_shift` names the one used;
+    :func:`transformations` lists what PROJ knows.
 
     Parameters
     ----------
@@ -210,6 +544,11 @@ def transform_points(points, src_crs, dst_crs, check_area=True):
         numbers, but they are not the points' positions (longitude and
         latitude typed into a UTM CRS move 42.8 m from SAD69 to SIRGAS 2000).
         False transforms them as ``gdalwarp`` does, without a word.
+    transformation : str, int, sequence or Transformation, optional
+        Apply this operation instead of PROJ's choice, to compare: a registry code
+        (``"EPSG:15485"``, ``15485``), the codes of a chain (``("EPSG:5528", "EPSG:5529")``),
+        or an item of :func:`transformations`. With ``check_area``, points outside its own
+        area of use are refused too.
 
     Returns
     -------
@@ -222,27 +561,38 @@ def transform_points(points, src_crs, dst_crs, check_area=True):
         For a CRS that PROJ does not know, points that are not (n, 2) finite,
         a coordinate no position on Earth has (beyond 1e9 m, or 9,000° in a
         geographic CRS: refused whatever ``check_area``, before PROJ sees it),
-        or (``check_area``) points outside a CRS's area of use.
+        (``check_area``) points outside a CRS's area of use, a transformation
+        PROJ does not know between the CRSs or whose grid is missing, or points
+        where PROJ gives no number (outside a grid).
 
     Examples
     --------
     >>> transform_points([[0.0, 0.0]], "EPSG:4326", "EPSG:4326")
     array([[0., 0.]])
+    >>> p = [[775445.0, 7369105.0]]                     # a GCP in SAD69 / UTM 21S
+    >>> grid = transform_points(p, "EPSG:29191", "EPSG:31981")
+    >>> three = transform_points(p, "EPSG:29191", "EPSG:31981", transformation="EPSG:15485")
+    >>> bool(1 < np.hypot(*(grid - three)[0]) < 10)      # metres between the two
+    True
     """
     points = as_points(points, "points")
     src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
     if check_area:
         _check_area(points, src, dst)
-    return _transform(points, src, dst)
+    if transformation is not None and src != dst:
+        described, _transformer = _forced(src, dst, transformation)
+        if check_area:
+            _check_operation_area(points, src, described)
+    return _transform(points, src, dst, transformation)
 
 
-def datum_shift(points, src_crs, dst_crs):
-    """How far each point's coordinates move from ``src_crs`` to ``dst_crs``.
+def datum_shift(points, src_crs, dst_crs, transformation=None):
+    """How far each point's coordinates move from ``src_crs`` to ``dst_crs``, and by what.
 
     A shift is a difference of coordinates, so the two CRSs must be alike:
     the same projection in the same unit on two datums (SAD69 / UTM 21S and
     SIRGAS 2000 / UTM 21S), or both geographic; and the points must be inside both CRSs' areas of
-    use (:func:`transform_points`).
+    use (:func:`transform_points`). The result names the transformation PROJ applied.
 
     Parameters
     ----------
@@ -251,11 +601,17 @@ def datum_shift(points, src_crs, dst_crs):
     src_crs, dst_crs : str, int or rasterio.crs.CRS
         Two projected CRSs with the same units (e.g. SAD69 / UTM 21S and
         SIRGAS 2000 / UTM 21S), or two geographic CRSs.
+    transformation : str, int, sequence or Transformation, optional
+        The operation to apply instead of PROJ's choice, e.g. ``"EPSG:15485"`` to compare the
+        three-parameter shift with the grid (see :func:`transform_points`).
 
     Returns
     -------
-    dx, dy, distance : ndarray
-        Per point, in the CRSs' units (metres for UTM).
+    DatumShift
+        ``dx, dy, distance`` per point in the CRSs' units (metres for UTM), as a tuple that
+        unpacks so; ``.transformation`` is the operation applied (name, EPSG codes, stated
+        accuracy, grids), ``.transformations`` and ``.used`` say which point got which when
+        PROJ needed more than one (points outside a grid's coverage).
 
     Raises
     ------
@@ -265,11 +621,18 @@ def datum_shift(points, src_crs, dst_crs):
         not a shift), or their projections differ (UTM zones 22S and 23S,
         UTM and Web Mercator).
 
+    Warns
+    -----
+    UserWarning
+        When PROJ knew no transformation for some points and applied its "ballpark" offset
+        (the ellipsoid change alone): the shift is not a datum shift there.
+
     Examples
     --------
-    >>> dx, dy, d = datum_shift([[500000.0, 7400000.0]], "EPSG:29193", "EPSG:31983")
-    >>> bool(dx[0] < 0 and dy[0] < 0)
-    True
+    >>> shift = datum_shift([[775445.0, 7369105.0]], "EPSG:29191", "EPSG:31981")
+    >>> dx, dy, distance = shift
+    >>> bool(dx[0] < 0 and dy[0] < 0), shift.transformation.codes
+    (True, ('EPSG:5528',))
     """
     points = as_points(points, "points")
     src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
@@ -294,9 +657,25 @@ def datum_shift(points, src_crs, dst_crs):
             "to change projection").format(
                 src=_crs_name(src), dst=_crs_name(dst), src_projection=_proj_text(src),
                 dst_projection=_proj_text(dst)))
-    moved = transform_points(points, src, dst)
+    moved = transform_points(points, src, dst, transformation=transformation)
     dx, dy = (moved - points).T
-    return dx, dy, np.hypot(dx, dy)
+    if src == dst or not len(points):
+        return DatumShift(dx, dy, np.hypot(dx, dy))
+    if transformation is not None:
+        return DatumShift(dx, dy, np.hypot(dx, dy), [_forced(src, dst, transformation)[0]])
+    found, used = _used_operations(points, moved, src, dst)
+    order = np.argsort(-np.bincount(used, minlength=len(found)), kind="stable")
+    found, used = tuple(found[k] for k in order), np.argsort(order)[used]
+    ballpark = [t for t in found if not t.codes]
+    if ballpark:
+        warnings.warn(_(
+            "PROJ knows no datum transformation from {src} to {dst} at {count} of {n} points "
+            "and applied {name}: the ellipsoid change alone, not a datum shift; give points "
+            "where a published transformation applies").format(
+                src=_crs_name(src), dst=_crs_name(dst), name=ballpark[0].name, n=len(points),
+                count=int(np.isin(used, [found.index(t) for t in ballpark]).sum())),
+            UserWarning, stacklevel=2)
+    return DatumShift(dx, dy, np.hypot(dx, dy), found, used)
 
 
 def _proj_text(crs):
@@ -353,7 +732,8 @@ def geocentric_translation(points, src_crs, dst_crs, translation=SAD69_TO_SIRGAS
     source ellipsoid -> Earth-centred X, Y, Z -> add (tx, ty, tz) -> back to
     geographic on the target ellipsoid (heights taken as 0). PROJ is used only
     for the projection steps (UTM <-> geographic, same datum). Comparing the
-    result with :func:`transform_points` shows which transformation PROJ chose.
+    result with :func:`transform_points` (``transformation="EPSG:15485"``) checks
+    PROJ's computation of EPSG:15485 independently.
 
     Parameters
     ----------
@@ -378,7 +758,8 @@ def geocentric_translation(points, src_crs, dst_crs, translation=SAD69_TO_SIRGAS
     --------
     >>> p = [[775445.0, 7369105.0]]
     >>> here = geocentric_translation(p, "EPSG:29191", "EPSG:31981")
-    >>> bool(np.abs(here - transform_points(p, "EPSG:29191", "EPSG:31981")).max() < 0.01)
+    >>> by_name = transform_points(p, "EPSG:29191", "EPSG:31981", transformation="EPSG:15485")
+    >>> bool(np.abs(here - by_name).max() < 0.01)
     True
     """
     shift = np.asarray(translation, dtype=np.float64)
@@ -393,6 +774,282 @@ def geocentric_translation(points, src_crs, dst_crs, translation=SAD69_TO_SIRGAS
     return transform_points(np.column_stack([lon, lat]), dst_geo, dst)
 
 
+# -- rsgeo's own reading of a horizontal shift grid (the check on PROJ's) ---------------------
+
+#: The shift grids rsgeo ships (``rsgeo/data/README.md``), by the datum they shift from.
+SHIFT_GRIDS = {"SAD69": "br_ibge_SAD69_003.tif", "SAD69(96)": "br_ibge_SAD96_003.tif"}
+
+# The units a GeoTIFF shift grid may give its offsets in (PROJ's grids.cpp), in arc-seconds
+_ARCSECONDS_PER = {"arc-second": 1.0, "degree": 3600.0, "radian": 180 / np.pi * 3600}
+
+# PROJ's tolerance at a grid's edges, a fraction of a cell (REL_TOLERANCE_HGRIDSHIFT)
+_EDGE_TOLERANCE = 1e-5
+
+
+class ShiftGrid(NamedTuple):
+    """A horizontal shift grid (NTv2 converted to GeoTIFF), read by rsgeo.
+
+    Attributes
+    ----------
+    name : str
+        The file's name.
+    source_crs, target_crs : str
+        The geographic CRSs it shifts from and to, e.g. "EPSG:4618" (SAD69) and "EPSG:4674".
+    lon, lat : ndarray
+        The nodes' longitudes (west to east) and latitudes (south to north), degrees.
+    dlon, dlat : ndarray
+        (rows, cols) shifts at the nodes in arc-seconds, longitude positive east; row 0 is the
+        southernmost, as ``lat``.
+    """
+
+    name: str
+    source_crs: str
+    target_crs: str
+    lon: np.ndarray
+    lat: np.ndarray
+    dlon: np.ndarray
+    dlat: np.ndarray
+
+    @property
+    def bounds(self):
+        """The box the nodes cover.
+
+        Returns
+        -------
+        tuple of float
+            (west, south, east, north) of the first and last nodes, degrees.
+        """
+        return (float(self.lon[0]), float(self.lat[0]), float(self.lon[-1]),
+                float(self.lat[-1]))
+
+    def covers(self, lon, lat):
+        """Which points are inside the grid, within PROJ's tolerance at its edges.
+
+        Parameters
+        ----------
+        lon, lat : array_like
+            Longitude and latitude, degrees, in the grid's source CRS.
+
+        Returns
+        -------
+        ndarray of bool
+            True inside; NaN is outside.
+        """
+        west, south, east, north = self.bounds
+        step_lon, step_lat = self.lon[1] - self.lon[0], self.lat[1] - self.lat[0]
+        eps = (step_lon + step_lat) * _EDGE_TOLERANCE
+        return ((lon >= west - eps) & (lon <= east + eps) & (lat >= south - eps)
+                & (lat <= north + eps))
+
+    def shift(self, lon, lat):
+        """The shift at points inside the grid, bilinear between the four nodes around each.
+
+        Parameters
+        ----------
+        lon, lat : ndarray
+            Longitude and latitude, degrees, inside the grid (:meth:`covers`; not checked).
+
+        Returns
+        -------
+        dlon, dlat : ndarray
+            Arc-seconds, longitude positive east.
+        """
+        x = (lon - self.lon[0]) / (self.lon[1] - self.lon[0])
+        y = (lat - self.lat[0]) / (self.lat[1] - self.lat[0])
+        cols, rows = len(self.lon), len(self.lat)
+        # the node to the south-west; on the east or north edge the last cell, at weight 1
+        i = np.clip(np.floor(x).astype(np.intp), 0, cols - 2)
+        j = np.clip(np.floor(y).astype(np.intp), 0, rows - 2)
+        fx, fy = np.clip(x - i, 0.0, 1.0), np.clip(y - j, 0.0, 1.0)
+
+        def bilinear(values):
+            south_row = values[j, i] * (1 - fx) + values[j, i + 1] * fx
+            north_row = values[j + 1, i] * (1 - fx) + values[j + 1, i + 1] * fx
+            return south_row * (1 - fy) + north_row * fy
+
+        return bilinear(self.dlon), bilinear(self.dlat)
+
+
+def _grid_path(grid):
+    from pathlib import Path
+
+    name = SHIFT_GRIDS.get(grid, grid)
+    if not isinstance(name, (str, os.PathLike)):
+        raise TypeError(_("grid must be one of {known} or the path of a GeoTIFF shift grid, "
+                          "got {kind}").format(known=", ".join(SHIFT_GRIDS),
+                                               kind=type(grid).__name__))
+    shipped = _grid_folder() / str(name)
+    path = shipped if shipped.is_file() else Path(name)
+    if not path.is_file():
+        raise DataError(_("no shift grid {grid!r}: give one of {known} (shipped with rsgeo) "
+                          "or the path of an NTv2-style GeoTIFF").format(
+                              grid=grid, known=", ".join(SHIFT_GRIDS)))
+    return path.resolve()
+
+
+def read_shift_grid(grid="SAD69"):
+    """Read a horizontal shift grid (PROJ's GeoTIFF form of an NTv2 grid) with rasterio.
+
+    Everything is read from the file's metadata, as PROJ reads it (``grids.cpp``): the bands
+    named ``latitude_offset`` and ``longitude_offset``, their unit (arc-second, degree or
+    radian), the longitude's sign (``positive_value`` east or west: NTv2 counts west), the
+    nodes at the pixel centres (GDAL's geotransform, whatever the file's AREA_OR_POINT), the
+    source CRS (the file's) and the target (``target_crs_epsg_code``).
+
+    Parameters
+    ----------
+    grid : str or path
+        ``"SAD69"`` or ``"SAD69(96)"`` (IBGE's grids, shipped: :data:`SHIFT_GRIDS`), a
+        shipped file's name, or the path of another such GeoTIFF.
+
+    Returns
+    -------
+    ShiftGrid
+
+    Raises
+    ------
+    rsgeo.errors.DataError
+        For a file that is not a single-grid horizontal shift GeoTIFF PROJ could read.
+
+    Examples
+    --------
+    >>> sad69 = read_shift_grid("SAD69")
+    >>> sad69.source_crs, sad69.target_crs, sad69.dlon.shape
+    ('EPSG:4618', 'EPSG:4674', (233, 181))
+    """
+    return _read_shift_grid(_grid_path(grid))
+
+
+@lru_cache(maxsize=8)
+def _read_shift_grid(path):
+    import rasterio
+
+    def refuse(why):
+        return DataError(_("{name} is not a horizontal shift grid rsgeo can read: {why}").format(
+            name=path.name, why=why))
+
+    try:
+        with rasterio.open(path) as dataset:
+            tags, names = dataset.tags(), list(dataset.descriptions)
+            units, subgrids = list(dataset.units), dataset.subdatasets
+            transform, crs = dataset.transform, dataset.crs
+            if tags.get("TYPE") != "HORIZONTAL_OFFSET":
+                raise refuse(_("its TYPE is {kind!r}, not 'HORIZONTAL_OFFSET'").format(
+                    kind=tags.get("TYPE")))
+            if "latitude_offset" not in names or "longitude_offset" not in names:
+                raise refuse(_("no bands named latitude_offset and longitude_offset (its "
+                               "bands: {names})").format(names=names))
+            lat_band = names.index("latitude_offset") + 1
+            lon_band = names.index("longitude_offset") + 1
+            dlat, dlon = (dataset.read(band).astype(np.float64)
+                          for band in (lat_band, lon_band))
+            positive = dataset.tags(lon_band).get("positive_value", "east")
+    except rasterio.errors.RasterioIOError as error:
+        raise DataError(_("cannot read {name} ({error})").format(
+            name=path.name, error=error)) from None
+    if subgrids:
+        raise refuse(_("it holds {n} subgrids; rsgeo reads single-grid files").format(
+            n=len(subgrids) + 1))
+    unit = units[lat_band - 1] or "arc-second"
+    if unit != (units[lon_band - 1] or "arc-second") or unit not in _ARCSECONDS_PER:
+        raise refuse(_("offset units {units}, not one of {known} for both").format(
+            units=units, known=", ".join(_ARCSECONDS_PER)))
+    if positive not in ("east", "west"):
+        raise refuse(_("positive_value {value!r}, not 'east' or 'west'").format(value=positive))
+    if crs is None or not crs.is_geographic or transform.b or transform.d:
+        raise refuse(_("it is not a north-up grid in a geographic CRS"))
+    rows, cols = dlat.shape
+    lon = transform.c + (np.arange(cols) + 0.5) * transform.a
+    lat = transform.f + (np.arange(rows) + 0.5) * transform.e
+    if transform.e < 0:                      # north-up file: make row 0 the southernmost
+        lat, dlat, dlon = lat[::-1], dlat[::-1], dlon[::-1]
+    factor = _ARCSECONDS_PER[unit] * (1.0 if positive == "east" else -1.0)
+    target = tags.get("target_crs_epsg_code")
+    arrays = [lon, lat, dlon * factor, dlat * _ARCSECONDS_PER[unit]]
+    for array in arrays:
+        array.flags.writeable = False
+    source = crs.to_epsg()
+    return ShiftGrid(path.name, f"EPSG:{source}" if source else crs.to_string(),
+                     f"EPSG:{target}" if target else "", *arrays)
+
+
+def grid_shift(points, grid="SAD69", inverse=False):
+    """Longitude and latitude moved by a horizontal shift grid, computed by rsgeo itself.
+
+    What PROJ's ``hgridshift`` does with the same file: the shift (dlon, dlat) at a point is
+    the bilinear interpolation of the four nodes around it, added to its longitude and
+    latitude; the inverse (target datum -> source) iterates ``p = q - shift(p)`` as PROJ does.
+    It reads the grid with :func:`read_shift_grid`; its agreement with PROJ, to a few
+    micrometres (PROJ keeps each node's shift, in radians, as a float32), is the check that
+    the two read the file alike (``tests/test_datum_grids.py``).
+
+    Parameters
+    ----------
+    points : (n, 2) array_like
+        Longitude, latitude in degrees, in the grid's source CRS (SAD69, EPSG:4618, for
+        ``"SAD69"``), or in its target CRS (SIRGAS 2000) with ``inverse``.
+    grid : str or path
+        See :func:`read_shift_grid`.
+    inverse : bool
+        From the target datum back to the source.
+
+    Returns
+    -------
+    ndarray
+        (n, 2) longitude, latitude in degrees in the target CRS (the source with
+        ``inverse``).
+
+    Raises
+    ------
+    rsgeo.errors.GridError
+        If a point is outside the grid (PROJ has no number there; rsgeo says so rather than
+        fall back to another transformation), or the inverse does not converge.
+    rsgeo.errors.DataError
+        For a grid file rsgeo cannot read (:func:`read_shift_grid`).
+
+    Examples
+    --------
+    >>> lon, lat = grid_shift([[-57.0, -23.0]], "SAD69")[0]      # SAD69 -> SIRGAS 2000
+    >>> print(f"{(lon + 57.0) * 3600:.3f}, {(lat + 23.0) * 3600:.3f}")      # arc-seconds
+    -1.749, -1.457
+    """
+    points = as_points(points, "points")
+    shift_grid = read_shift_grid(grid)
+    lon, lat = points[:, 0], points[:, 1]
+    outside = ~shift_grid.covers(lon, lat)
+    if outside.any():
+        west, south, east, north = shift_grid.bounds
+        first = int(np.flatnonzero(outside)[0])
+        raise GridError(_(
+            "{count} of {n} points are outside the grid {name} (longitude {west:g} to {east:g}, "
+            "latitude {south:g} to {north:g}; first: point {first} ({lon:.6g}, {lat:.6g})): "
+            "the grid has no shift there; give longitude and latitude in degrees inside it, "
+            "or use transform_points, which lets PROJ choose another transformation").format(
+                count=int(outside.sum()), n=len(points), name=shift_grid.name, west=west,
+                east=east, south=south, north=north, first=first, lon=lon[first],
+                lat=lat[first]))
+    if not inverse:
+        dlon, dlat = shift_grid.shift(lon, lat)
+        return np.column_stack([lon + dlon / 3600, lat + dlat / 3600])
+    # PROJ's inverse: start from q - shift(q), correct by the mismatch, at most 10 times
+    dlon, dlat = shift_grid.shift(lon, lat)
+    guess_lon, guess_lat = lon - dlon / 3600, lat - dlat / 3600
+    converged = np.zeros(len(points), dtype=bool)
+    for _iteration in range(10):
+        if not shift_grid.covers(guess_lon, guess_lat).all():
+            break
+        dlon, dlat = shift_grid.shift(guess_lon, guess_lat)
+        miss_lon = guess_lon + dlon / 3600 - lon
+        miss_lat = guess_lat + dlat / 3600 - lat
+        guess_lon, guess_lat = guess_lon - miss_lon, guess_lat - miss_lat
+        converged = np.radians(np.hypot(miss_lon, miss_lat)) <= 1e-12
+        if converged.all():
+            return np.column_stack([guess_lon, guess_lat])
+    raise GridError(_("the inverse shift by {name} did not converge at {count} of {n} points "
+                      "(at the grid's edge?); give points farther inside the grid").format(
+                          name=shift_grid.name, n=len(points), count=int((~converged).sum())))
+
+
 class CRSMapping:
     """Output map (x, y) in ``dst_crs`` -> source (col, row), through PROJ then a model.
 
@@ -401,15 +1058,20 @@ class CRSMapping:
     to_source : callable or affine.Affine
         Source map (x, y) in ``src_crs`` -> source image (col, row).
     src_crs, dst_crs : rasterio.crs.CRS
+    transformation : optional
+        The datum transformation to apply (:func:`transform_points`); PROJ's choice, point
+        by point, by default.
     """
 
-    def __init__(self, to_source, src_crs, dst_crs):
+    def __init__(self, to_source, src_crs, dst_crs, transformation=None):
         self.to_source = to_source
         self.src_crs, self.dst_crs = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
+        self.transformation = transformation
 
     def __call__(self, points):
         # every output cell, as gdalwarp does: cells beyond the CRS's area of use get nodata
-        moved = _transform(as_points(points, "points"), self.dst_crs, self.src_crs)
+        moved = _transform(as_points(points, "points"), self.dst_crs, self.src_crs,
+                           self.transformation)
         if callable(self.to_source):
             return self.to_source(moved)
         cols, rows = self.to_source @ (moved[:, 0], moved[:, 1])
@@ -440,13 +1102,18 @@ def _as_raster(raster_or_path):
                         "rsgeo.data.Raster or the path of a GeoTIFF") from None
 
 
-def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
+def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
+              transformation=None):
     """A raster resampled into another CRS with rsgeo's GDAL-exact warp.
 
     Every output pixel centre is taken to the source CRS by PROJ (exactly,
     like ``gdalwarp -et 0``) and then to the source pixel by the inverse
     geotransform. The output grid is north-up over the transformed footprint,
-    with the source's pixel size unless ``resolution`` is given.
+    with the source's pixel size unless ``resolution`` is given. The datum
+    transformation is :func:`transform_points`' (IBGE's grid from SAD69 to
+    SIRGAS 2000 where it applies), named in the result's description;
+    ``gdalwarp -ct`` with its ``pipeline`` (:func:`transformations`) gives GDAL
+    the same one.
 
     Parameters
     ----------
@@ -458,11 +1125,15 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
     method : {"nearest", "bilinear", "cubic"}
     nodata : number
         Destination nodata (``gdalwarp -dstnodata``).
+    transformation : str, int, sequence or Transformation, optional
+        The datum transformation to apply instead of PROJ's choice (see
+        :func:`transform_points`), e.g. ``"EPSG:15485"``.
 
     Returns
     -------
     rsgeo.data.Raster
-        In ``dst_crs``, with its transform and nodata.
+        In ``dst_crs``, with its transform and nodata; its description names the
+        transformation applied at the raster's centre.
 
     Raises
     ------
@@ -490,14 +1161,28 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0):
 
     def pixel_to_dst(points):
         xs, ys = raster.transform @ (points[:, 0], points[:, 1])
-        return _transform(np.column_stack([xs, ys]), src_crs, dst)
+        return _transform(np.column_stack([xs, ys]), src_crs, dst, transformation)
 
     transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_dst, resolution=size)
     as_output_shape(shape, raster.array.dtype, _bands(raster.array), "shape")
-    mapping = CRSMapping(~raster.transform, src_crs, dst)
+    mapping = CRSMapping(~raster.transform, src_crs, dst, transformation)
     array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
-    return Raster(array, transform, dst, nodata, f"{raster.description} reprojected to {dst}",
-                  raster.name)
+    rows, cols = raster.array.shape[-2:]
+    named = _operation_at(np.array([raster.transform @ (cols / 2, rows / 2)]), src_crs, dst,
+                          transformation)
+    return Raster(array, transform, dst, nodata,
+                  f"{raster.description} reprojected to {dst}"
+                  f"{f' by {named}' if named is not None else ''}", raster.name)
+
+
+def _operation_at(points, src, dst, transformation=None):
+    """The Transformation PROJ applies at the first of ``points`` (None for equal CRSs)."""
+    if src == dst:
+        return None
+    if transformation is not None:
+        return _forced(src, dst, transformation)[0]
+    found, used = _used_operations(points[:1], _transform(points[:1], src, dst), src, dst)
+    return found[used[0]]
 
 
 def _bands(array):

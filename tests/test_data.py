@@ -218,3 +218,18 @@ def test_import_does_not_load_numba():
     run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "False"
+
+
+def test_every_proj_grid_is_documented_with_its_checksum():
+    # rsgeo/data/README.md, "PROJ grids": each shipped grid's SHA-256, as copied from its source
+    import hashlib
+    import re
+    from pathlib import Path
+
+    folder = Path(data.__file__).parent
+    readme = (folder / "README.md").read_text(encoding="utf-8")
+    documented = dict(re.findall(r"^\| `([\w.]+)` \|.*\| `([0-9a-f]{64})` \|$", readme, re.M))
+    shipped = {path.name: hashlib.sha256(path.read_bytes()).hexdigest()
+               for path in sorted((folder / "proj").iterdir()) if path.is_file()}
+    assert shipped == documented
+    assert set(shipped) == {"br_ibge_SAD69_003.tif", "br_ibge_SAD96_003.tif", "egm96_15.gtx"}

@@ -5,6 +5,7 @@ from xml.sax.saxutils import escape
 
 import affine
 import numpy as np
+import pyproj
 import pytest
 import rasterio
 from rasterio.control import GroundControlPoint
@@ -20,12 +21,37 @@ SAD69_UTM21S, SIRGAS_UTM21S = "EPSG:29191", "EPSG:31981"
 SAD69_UTM23S, SIRGAS_UTM23S = "EPSG:29193", "EPSG:31983"
 
 
-def reprojection_xml(src_crs, dst_crs):
-    """GDAL's exact reprojection step (no approximate transformer: gdalwarp -et 0)."""
+def reprojection_xml(src_crs, dst_crs, operation=None):
+    """GDAL's exact reprojection step (no approximate transformer: gdalwarp -et 0).
+
+    ``operation``: a PROJ pipeline GDAL must apply (its COORDINATE_OPERATION option, as
+    ``gdalwarp -ct``): rasterio's GDAL does not find rsgeo's grids by name, so it is given
+    the operation rsgeo applies, its grids by their absolute paths.
+    """
+    options = (f'<Options><Option key="COORDINATE_OPERATION">{escape(operation)}</Option>'
+               f"</Options>" if operation else "")
     return (f"<ReprojectTransformer><ReprojectionTransformer>"
             f"<SourceSRS>{escape(georef.as_crs(src_crs).to_wkt())}</SourceSRS>"
             f"<TargetSRS>{escape(georef.as_crs(dst_crs).to_wkt())}</TargetSRS>"
-            f"</ReprojectionTransformer></ReprojectTransformer>")
+            f"{options}</ReprojectionTransformer></ReprojectTransformer>")
+
+
+def operation_at(points, src_crs, dst_crs):
+    """The PROJ pipeline rsgeo applies at these points (one for all of them)."""
+    shift = georef.datum_shift(points, src_crs, dst_crs)
+    assert len(shift.transformations) == 1, shift
+    return shift.transformation.pipeline
+
+
+def proj_pipeline(src_zone_sad69_to_sirgas, grid="br_ibge_SAD69_003.tif"):
+    """SAD69 / UTM zone N south -> SIRGAS 2000 / UTM N south by IBGE's grid, written here."""
+    from rsgeo._proj import GRIDS
+
+    zone = src_zone_sad69_to_sirgas
+    return pyproj.Transformer.from_pipeline(
+        f"+proj=pipeline +step +inv +proj=utm +zone={zone} +south +ellps=aust_SA "
+        f"+step +proj=hgridshift +grids={GRIDS / grid} "
+        f"+step +proj=utm +zone={zone} +south +ellps=GRS80")
 
 
 @pytest.fixture(scope="module")
@@ -40,8 +66,10 @@ def nat1_crop():
 @pytest.mark.parametrize("method", ["nearest", "bilinear", "cubic"])
 def test_sad69_to_sirgas_warp_equals_gdalwarp(nat1_crop, method):
     out = georef.reproject(nat1_crop, SIRGAS_UTM23S, method=method, nodata=0)
-    assert out.crs.to_epsg() == 31983
-    xml = affine_source(nat1_crop.transform) + reprojection_xml(nat1_crop.crs, SIRGAS_UTM23S)
+    assert out.crs.to_epsg() == 31983 and "EPSG:5528" in out.description
+    corner = [[nat1_crop.transform.c, nat1_crop.transform.f]]
+    xml = affine_source(nat1_crop.transform) + reprojection_xml(
+        nat1_crop.crs, SIRGAS_UTM23S, operation_at(corner, nat1_crop.crs, SIRGAS_UTM23S))
     reference = gdal_warp(nat1_crop.array, xml, out.transform, out.array.shape, method, 0)
     assert (out.array != 0).mean() > 0.9
     np.testing.assert_array_equal(out.array, reference)
@@ -50,15 +78,21 @@ def test_sad69_to_sirgas_warp_equals_gdalwarp(nat1_crop, method):
 def test_transform_points_matches_proj_and_the_helmert_shift():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     moved = georef.transform_points(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
-    xs, ys = rasterio.warp.transform(SAD69_UTM21S, SIRGAS_UTM21S, gcps.map_xy[:, 0],
-                                     gcps.map_xy[:, 1])
-    np.testing.assert_array_equal(moved, np.column_stack([xs, ys]))
+    # IBGE's grid through a PROJ pipeline written here, the grid by its path
+    xs, ys = proj_pipeline(21).transform(gcps.map_xy[:, 0], gcps.map_xy[:, 1])
+    np.testing.assert_allclose(moved, np.column_stack([xs, ys]), rtol=0, atol=1e-6)
     dx, dy, distance = georef.datum_shift(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
-    # EPSG:15485 translates by (-67.35, 3.88, -38.22) m: about 68 m horizontally, to the SW here
+    # the grid moves them about 63 m to the south-west here
     assert np.all((distance > 60) & (distance < 75))
     assert np.all(dx < 0) and np.all(dy < 0)
     back = georef.transform_points(moved, SIRGAS_UTM21S, gcps.crs)
     np.testing.assert_allclose(back, gcps.map_xy, atol=1e-6)
+    # EPSG:15485 asked by name is what rasterio's GDAL applies (it has no grid)
+    three = georef.transform_points(gcps.map_xy, gcps.crs, SIRGAS_UTM21S,
+                                    transformation="EPSG:15485")
+    xs, ys = rasterio.warp.transform(SAD69_UTM21S, SIRGAS_UTM21S, gcps.map_xy[:, 0],
+                                     gcps.map_xy[:, 1])
+    np.testing.assert_allclose(three, np.column_stack([xs, ys]), rtol=0, atol=1e-6)
 
 
 @pytest.mark.parametrize("bad", ["EPSG:999999", "not a crs", 12345678])
@@ -131,7 +165,7 @@ def test_georeference_saved_geotiff_equals_gdalwarp(tmp_path, order, method, dst
     np.testing.assert_array_equal(back, out.array)
     xml = gcp_source(gcps.image_xy, gcps.map_xy, order)
     if dst_crs is not None:
-        xml += reprojection_xml(gcps.crs, dst_crs)
+        xml += reprojection_xml(gcps.crs, dst_crs, operation_at(gcps.map_xy, gcps.crs, dst_crs))
     reference = gdal_warp(raster.array, xml, out.transform, back.shape[-2:], method, 0)
     np.testing.assert_array_equal(back, reference)
 
@@ -166,14 +200,18 @@ def test_overlap_refuses_rasters_in_different_crss():
     assert radiometry.overlap(a, b)[0].size > 0
 
 
-def test_proj_uses_epsg_15485_offline_the_three_translations():
+def test_epsg_15485_by_name_is_the_three_translations_by_hand():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
-    by_proj = georef.transform_points(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
+    by_proj = georef.transform_points(gcps.map_xy, gcps.crs, SIRGAS_UTM21S,
+                                      transformation="EPSG:15485")
     by_hand = georef.geocentric_translation(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
     assert np.abs(by_hand - by_proj).max() < 1e-3
     # the ellipsoid change alone (no translation) is tens of metres away: the check can fail
     ellipsoid_only = georef.geocentric_translation(gcps.map_xy, gcps.crs, SIRGAS_UTM21S, (0, 0, 0))
     assert np.abs(ellipsoid_only - by_proj).max() > 10
+    # PROJ's own choice here is IBGE's grid, metres away from the translations
+    by_grid = georef.transform_points(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
+    assert np.hypot(*(by_hand - by_grid).T).min() > 5
     with pytest.raises(ValueError, match="three finite numbers"):
         georef.geocentric_translation(gcps.map_xy, gcps.crs, SIRGAS_UTM21S, (1.0, 2.0))
 
@@ -242,11 +280,17 @@ def test_datum_shift_refuses_two_projections(dst, projection):
 
 def test_datum_shift_between_two_geographic_crss_is_proj_in_degrees():
     lonlat = [[-54.3, -23.78], [-45.2, -23.3]]
-    dx, dy, distance = georef.datum_shift(lonlat, "EPSG:4618", "EPSG:4674")   # SAD69 -> SIRGAS
-    xs, ys = rasterio.warp.transform("EPSG:4618", "EPSG:4674", [-54.3, -45.2], [-23.78, -23.3])
-    np.testing.assert_array_equal(dx, np.array(xs) - [-54.3, -45.2])
-    np.testing.assert_array_equal(dy, np.array(ys) - [-23.78, -23.3])
+    shift = georef.datum_shift(lonlat, "EPSG:4618", "EPSG:4674")   # SAD69 -> SIRGAS
+    dx, dy, distance = shift
+    moved = georef.grid_shift(lonlat, "SAD69")                     # the grid, read by rsgeo
+    np.testing.assert_allclose(dx, moved[:, 0] - [-54.3, -45.2], rtol=0, atol=1e-10)
+    np.testing.assert_allclose(dy, moved[:, 1] - [-23.78, -23.3], rtol=0, atol=1e-10)
     assert np.all((distance > 1e-4) & (distance < 1e-3))     # tens of metres, in degrees
+    assert shift.transformation.codes == ("EPSG:5528",)
+    three = georef.datum_shift(lonlat, "EPSG:4618", "EPSG:4674", transformation=15485)
+    xs, ys = rasterio.warp.transform("EPSG:4618", "EPSG:4674", [-54.3, -45.2], [-23.78, -23.3])
+    np.testing.assert_allclose(three.dx, np.array(xs) - [-54.3, -45.2], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(three.dy, np.array(ys) - [-23.78, -23.3], rtol=0, atol=1e-12)
 
 
 def test_points_outside_a_crss_area_of_use_are_refused():
@@ -264,11 +308,11 @@ def test_points_outside_a_crss_area_of_use_are_refused():
     with pytest.raises(ValueError, match="outside the area of use of EPSG:31983 .*point 0 "
                                          r"\(-60, -20\) in EPSG:4326"):
         georef.transform_points([[-60.0, -20.0]], "EPSG:4326", SIRGAS_UTM23S)
-    # check_area=False: what PROJ (rasterio, gdalwarp) gives, without a word
+    # check_area=False: what PROJ (pyproj's, with rsgeo's grids) gives, without a word
     moved = georef.transform_points(typed, SAD69_UTM23S, SIRGAS_UTM23S, check_area=False)
-    xs, ys = rasterio.warp.transform(SAD69_UTM23S, SIRGAS_UTM23S, [500000.0, -45.0],
-                                     [7400000.0, -23.0])
-    np.testing.assert_array_equal(moved, np.column_stack([xs, ys]))
+    xs, ys = pyproj.Transformer.from_crs(SAD69_UTM23S, SIRGAS_UTM23S, always_xy=True).transform(
+        [500000.0, -45.0], [7400000.0, -23.0])
+    np.testing.assert_allclose(moved, np.column_stack([xs, ys]), rtol=0, atol=1e-6)
     # a CRS read from a file (no usage in its WKT) is looked up by its EPSG code
     nat1 = data.load("nat1")
     with pytest.raises(ValueError, match="outside the area of use of EPSG:29193"):
@@ -281,9 +325,8 @@ def test_points_outside_a_crss_area_of_use_are_refused():
 def test_datum_shift_inside_the_areas_is_unchanged():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     dx, dy, distance = georef.datum_shift(gcps.map_xy, gcps.crs, SIRGAS_UTM21S)
-    xs, ys = rasterio.warp.transform(SAD69_UTM21S, SIRGAS_UTM21S, gcps.map_xy[:, 0],
-                                     gcps.map_xy[:, 1])
-    np.testing.assert_array_equal(dx, np.array(xs) - gcps.map_xy[:, 0])
+    xs, ys = proj_pipeline(21).transform(gcps.map_xy[:, 0], gcps.map_xy[:, 1])
+    np.testing.assert_allclose(dx, np.array(xs) - gcps.map_xy[:, 0], rtol=0, atol=1e-6)
     np.testing.assert_array_equal(distance, np.hypot(dx, dy))
 
 
