@@ -82,7 +82,9 @@ def _orthorectify(n):
     dem = np.random.default_rng(1).uniform(0, 300, (dem_n, dem_n))
     dem_gt = affine.Affine(dem_step, 0, -34.9 - 1.1 * degrees, 0, -dem_step, -8.0 + 1.1 * degrees)
     grid = affine.Affine(step, 0, -34.9 - degrees, 0, -step, -8.0 + degrees)
-    out = orthorectify(image, rpc, dem, dem_gt, grid, (n, n), "bilinear")
+    # the DEM's heights are above the ellipsoid, as GDAL takes a DEM without a vertical CRS
+    out = orthorectify(image, rpc, dem, dem_gt, grid, (n, n), "bilinear",
+                       dem_vertical="ellipsoidal")
     return image, out
 
 

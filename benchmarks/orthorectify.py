@@ -219,10 +219,11 @@ def make_scene(grid, size, folder):
 def rsgeo_runner(image, scene, method, threads, transform=None, shape=None):
     """A function that orthorectifies with rsgeo and returns the array."""
     def run():
+        # heights above the ellipsoid: GDAL takes a DEM file without a vertical CRS so
         return orthorectify(image, scene.rpc, scene.dem, scene.dem_transform,
                             transform or scene.transform, shape or (scene.size, scene.size),
                             method, nodata=0, dst_crs=scene.crs, dem_crs=scene.dem_crs,
-                            num_threads=threads)
+                            num_threads=threads, dem_vertical="ellipsoidal")
     return run
 
 

@@ -20,6 +20,7 @@ True
 """
 
 import struct
+from functools import cache
 
 import numpy as np
 
@@ -28,13 +29,14 @@ from ._proj import GRIDS, transformer
 from .errors import DataError, GridError
 
 __all__ = ["GEOIDS", "VERTICAL_DATUMS", "geoid_undulation", "geoid_coverage",
-           "to_ellipsoidal"]
+           "geoid_on_grid", "to_ellipsoidal", "check_vertical"]
 
-# EGM96 height (EPSG:5773) on WGS 84: PROJ applies "WGS 84 to EGM96 height (1)" (EPSG:10084),
-# the grid egm96_15.gtx, from WGS 84 3-D (EPSG:4979).
+#: The geoids rsgeo ships: name -> (source CRS, target CRS, grid file) of PROJ's operation.
+#: EGM96 height (EPSG:5773) on WGS 84: PROJ applies "WGS 84 to EGM96 height (1)"
+#: (EPSG:10084), the grid egm96_15.gtx, from WGS 84 3-D (EPSG:4979).
 GEOIDS = {"EGM96": ("EPSG:4979", "EPSG:4326+5773", "egm96_15.gtx")}
 
-# what a DEM's heights can be above: the ellipsoid itself or one of GEOIDS
+#: What a DEM's heights can be above: the ellipsoid itself or one of :data:`GEOIDS`.
 VERTICAL_DATUMS = ("ellipsoidal", *GEOIDS)
 
 
@@ -56,10 +58,30 @@ def geoid_coverage(geoid="EGM96"):
     >>> geoid_coverage()
     (-76.0, -36.0, -28.0, 7.0)
     """
-    _, _, name = _geoid(geoid)
-    with open(GRIDS / name, "rb") as grid:
-        south, west, dlat, dlon, rows, cols = struct.unpack(">4d2i", grid.read(40))
+    south, west, dlat, dlon, values = _grid(geoid)
+    rows, cols = values.shape
     return (west, south, west + (cols - 1) * dlon, south + (rows - 1) * dlat)
+
+
+@cache
+def _grid(geoid):
+    """(south, west, dlat, dlon, N) of a shipped GTX grid; N (rows, cols), south row first.
+
+    GTX (NOAA's vertical grid format, which PROJ reads): a 40-byte big-endian header, south
+    and west edges and the latitude and longitude steps (degrees, 4 doubles), rows and columns
+    (2 int32), then rows x cols big-endian float32 heights, the southernmost row first.
+    """
+    _, _, name = _geoid(geoid)
+    raw = (GRIDS / name).read_bytes()
+    south, west, dlat, dlon, rows, cols = struct.unpack(">4d2i", raw[:40])
+    if len(raw) != 40 + 4 * rows * cols:
+        raise DataError(_("{name} holds {size} bytes, not the 40 + 4 x {rows} x {cols} its "
+                          "header says: the shipped grid is damaged; reinstall rsgeo").format(
+                              name=name, size=len(raw), rows=rows, cols=cols))
+    values = np.frombuffer(raw, dtype=">f4", count=rows * cols, offset=40)
+    values = values.astype(np.float64).reshape(rows, cols)
+    values.flags.writeable = False
+    return south, west, dlat, dlon, values
 
 
 def _geoid(geoid):
@@ -96,21 +118,7 @@ def geoid_undulation(lon, lat, geoid="EGM96"):
     -15.03
     """
     src, dst, _name = _geoid(geoid)
-    lon = np.asarray(lon, dtype=np.float64)
-    lat = np.asarray(lat, dtype=np.float64)
-    if lon.shape != lat.shape:
-        raise GridError(_("lon and lat must have the same shape, got {a} and {b}").format(
-            a=lon.shape, b=lat.shape))
-    west, south, east, north = geoid_coverage(geoid)
-    outside = ~((lon >= west) & (lon <= east) & (lat >= south) & (lat <= north))
-    if outside.any():
-        k = int(np.flatnonzero(outside.ravel())[0])
-        raise GridError(_(
-            "{n} point(s) are outside the shipped {geoid} grid (longitude {west:g} to {east:g}, "
-            "latitude {south:g} to {north:g}), e.g. ({lon}, {lat}); rsgeo ships the geoid over "
-            "Brazil only: give WGS 84 longitude and latitude in degrees inside it").format(
-                n=int(outside.sum()), geoid=geoid, west=west, east=east, south=south,
-                north=north, lon=lon.ravel()[k], lat=lat.ravel()[k]))
+    lon, lat = _inside(lon, lat, geoid)
     if lon.size == 0:
         return np.zeros(lon.shape)
     proj = transformer(src, dst)
@@ -122,6 +130,150 @@ def geoid_undulation(lon, lat, geoid="EGM96"):
             "rsgeo/data/proj?").format(geoid=geoid, operation=used.description, name=_name))
     # the height above the geoid of a point on the ellipsoid (h = 0) is H = -N
     return -np.asarray(height, dtype=np.float64).reshape(lon.shape)
+
+
+def _inside(lon, lat, geoid):
+    """lon and lat as float64 arrays of one shape, refused if a point is outside the grid."""
+    lon = np.asarray(lon, dtype=np.float64)
+    lat = np.asarray(lat, dtype=np.float64)
+    if lon.shape != lat.shape:
+        raise GridError(_("lon and lat must have the same shape, got {a} and {b}").format(
+            a=lon.shape, b=lat.shape))
+    west, south, east, north = geoid_coverage(geoid)
+    # written so that NaN is outside too
+    outside = ~((lon >= west) & (lon <= east) & (lat >= south) & (lat <= north))
+    if outside.any():
+        k = int(np.flatnonzero(outside.ravel())[0])
+        raise GridError(_(
+            "{n} point(s) are outside the shipped {geoid} grid (longitude {west:g} to {east:g}, "
+            "latitude {south:g} to {north:g}), e.g. ({lon}, {lat}); rsgeo ships the geoid over "
+            "Brazil only: give WGS 84 longitude and latitude in degrees inside it").format(
+                n=int(outside.sum()), geoid=geoid, west=west, east=east, south=south,
+                north=north, lon=lon.ravel()[k], lat=lat.ravel()[k]))
+    return lon, lat
+
+
+def _bilinear(lon, lat, geoid):
+    """N read from the GTX grid by rsgeo itself: bilinear between the four nodes around each
+    point, as PROJ's vertical grid shift does (tests/test_heights.py: the two agree to far
+    below a millimetre). No coverage check: the caller has made it (:func:`_inside`)."""
+    south, west, dlat, dlon, values = _grid(geoid)
+    rows, cols = values.shape
+    x = (lon - west) / dlon
+    y = (lat - south) / dlat
+    # the node to the south-west; on the east or north edge, the last cell (weight 1 there)
+    i = np.clip(np.floor(x).astype(np.intp), 0, cols - 2)
+    j = np.clip(np.floor(y).astype(np.intp), 0, rows - 2)
+    fx, fy = x - i, y - j
+    south_row = values[j, i] * (1 - fx) + values[j, i + 1] * fx
+    north_row = values[j + 1, i] * (1 - fx) + values[j + 1, i + 1] * fx
+    return south_row * (1 - fy) + north_row * fy
+
+
+# cells of the grid whose longitude and latitude are computed at a time in geoid_on_grid
+_STRIP_CELLS = 2 ** 18
+
+
+def geoid_on_grid(transform, shape, crs=None, geoid="EGM96"):
+    """The geoid undulation N at the centre of every cell of a grid, e.g. of a DEM.
+
+    Each cell centre's longitude and latitude (by PROJ when ``crs`` is projected), then N by
+    bilinear interpolation in the shipped grid, read by rsgeo (the same numbers as PROJ's
+    :func:`geoid_undulation`, to far below a millimetre, without PROJ's cost per point).
+    ``dem + geoid_on_grid(...)`` turns a DEM above the geoid into one above the ellipsoid.
+
+    Parameters
+    ----------
+    transform : affine.Affine or sequence of 6 numbers
+        The grid's geotransform (pixel corner -> map), an affine.Affine or GDAL's 6 numbers.
+    shape : (rows, cols)
+        The grid's size.
+    crs : str, int or rasterio CRS, optional
+        The grid's CRS; None is EPSG:4326 (longitude, latitude in degrees).
+    geoid : {"EGM96"}
+        The geoid model.
+
+    Returns
+    -------
+    ndarray
+        N in metres, float64, ``shape``.
+
+    Raises
+    ------
+    GridError
+        If a cell centre is outside the shipped grid (:func:`geoid_coverage`).
+    TypeError, ValueError
+        If the transform, shape or CRS is not one (as :func:`rsgeo.data.save` reads them).
+
+    Examples
+    --------
+    >>> import affine
+    >>> n = geoid_on_grid(affine.Affine(0.01, 0, -34.9, 0, -0.01, -7.95), (3, 4))
+    >>> n.shape, bool((-5.5 < n).all() and (n < -5.3).all())
+    ((3, 4), True)
+    """
+    from ._checks import as_shape
+
+    return _add_geoid(np.zeros(as_shape(shape, "shape")), transform, crs, geoid)
+
+
+def _add_geoid(heights, transform, crs, geoid):
+    """Add N at each cell centre of a grid to ``heights`` (float64, (rows, cols)) in place and
+    return it: strip by strip of rows, so that a DEM becomes H + N without a second array of
+    its size (see :func:`geoid_on_grid`)."""
+    from ._checks import as_crs
+    from .data import _as_affine
+
+    _geoid(geoid)
+    gt = _as_affine(transform, "transform")
+    crs = as_crs("EPSG:4326" if crs is None else crs, "crs")
+    to_lon_lat = None if crs.to_epsg() == 4326 else transformer(crs.to_wkt(), "EPSG:4326")
+    rows, cols = heights.shape
+    strip = max(1, _STRIP_CELLS // max(cols, 1))
+    centre_cols = np.arange(cols) + 0.5
+    for start in range(0, rows, strip):
+        centre_rows = (np.arange(start, min(start + strip, rows)) + 0.5)[:, None]
+        x = gt.c + centre_cols * gt.a + centre_rows * gt.b
+        y = gt.f + centre_cols * gt.d + centre_rows * gt.e
+        if to_lon_lat is not None:
+            x, y = (np.reshape(v, x.shape) for v in to_lon_lat.transform(x.ravel(), y.ravel()))
+        lon, lat = _inside(*np.broadcast_arrays(x, y), geoid)
+        heights[start:start + len(centre_rows)] += _bilinear(lon, lat, geoid)
+    return heights
+
+
+def check_vertical(vertical, name="vertical"):
+    """``vertical`` if it is one of :data:`VERTICAL_DATUMS`, else a GridError that asks.
+
+    Parameters
+    ----------
+    vertical : str or None
+        What heights are above: "ellipsoidal" or a geoid ("EGM96").
+    name : str
+        The argument's name, for the message.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    GridError
+        If ``vertical`` is None or not one of :data:`VERTICAL_DATUMS`.
+
+    Examples
+    --------
+    >>> check_vertical("EGM96")
+    'EGM96'
+    """
+    if vertical not in VERTICAL_DATUMS:
+        raise GridError(_(
+            "{name} must be one of {known}, got {vertical!r}: RPCs and GNSS take heights above "
+            "the WGS 84 ellipsoid; say what the heights are above (SRTM and Copernicus DEMs "
+            "are above a geoid, EGM96 or EGM2008, not the ellipsoid; rsgeo ships EGM96 over "
+            "Brazil)").format(name=name, known=", ".join(repr(v) for v in VERTICAL_DATUMS),
+                              vertical=vertical))
+    return vertical
 
 
 def to_ellipsoidal(height, lon, lat, vertical):
@@ -152,11 +304,7 @@ def to_ellipsoidal(height, lon, lat, vertical):
     >>> bool(4.0 < h[0] < 5.0)                          # 10 m above sea level, N = -5.5 m
     True
     """
-    if vertical not in VERTICAL_DATUMS:
-        raise GridError(_(
-            "vertical must be one of {known}, got {vertical!r}: say what the heights are "
-            "above (a DEM such as SRTM is above EGM96)").format(
-                known=", ".join(repr(v) for v in VERTICAL_DATUMS), vertical=vertical))
+    check_vertical(vertical)
     height = np.asarray(height, dtype=np.float64)
     if vertical == "ellipsoidal":
         return height.copy()

@@ -78,9 +78,8 @@ ALLOWED: dict[str, list[str]] = {
         "53(7), 3847–3854",
     ],
     "02b_crs_datums.ipynb": [
-        # an outside comparison with IBGE's grid (EPSG:5528), not shipped yet: quoted until it is
-        "up to 7.8 m apart at these GCPs",
-        "up to\n  7.8 m away from EPSG:15485",
+        "SAD69(96)",                         # the 1996 realization's name (EPSG:5527)
+        "the epoch 2000.4",                  # SIRGAS 2000's reference epoch, a definition
     ],
     "03_evaluating_models.ipynb": [
         "the row by 0.5",                                  # half a pixel: corner vs centre
@@ -88,6 +87,9 @@ ALLOWED: dict[str, list[str]] = {
         "≈ 0.2–0.5 pixel",                                 # Townshend et al.'s targets
         "Decreto 89.817/1984",                             # the decree's number
         "90 %",                                            # the PEC's definition
+        "95 %",                                            # ASPRS's confidence level
+        "20 check points",                                 # ASPRS's and the NSSDA's minimum
+        "1:25,000 map, lecture | ≈ 20 m",                  # the lecture's rule
     ],
 }
 

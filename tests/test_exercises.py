@@ -99,6 +99,38 @@ def design(kind="right"):
             "degree 2": transforms.design_matrix(points, 2)}[kind]
 
 
+@functools.cache
+def pec_task():
+    survey = synthetic.distorted_pair(n_gcps=40, blunder_size=3.0, seed=27).gcps
+    is_check = np.arange(len(survey)) % 2 == 1
+    gcp_image, gcp_map = survey.image_xy[~is_check], survey.map_xy[~is_check]
+    to_map = transforms.fit_polynomial(gcp_image, gcp_map, order=2)
+    check = to_map(survey.image_xy[is_check]) - survey.map_xy[is_check]
+    return check, to_map(gcp_image) - gcp_map, 50_000
+
+
+# the tables as Decreto 89.817 (art. 9) and the DSG's ET-CQDG print them, mm at the map's scale
+PEC_PCD_MM = {"A": (0.28, 0.17), "B": (0.5, 0.3), "C": (0.8, 0.5), "D": (1.0, 0.6)}
+DECREE_MM = {"A": (0.5, 0.3), "B": (0.8, 0.5), "C": (1.0, 0.6)}
+
+
+def pec_answer(kind="right"):
+    check, fit, scale = pec_task()
+    errors = fit if kind == "fit" else check
+    d = np.hypot(errors[:, 0], errors[:, 1])
+    rms, mean = np.sqrt(np.mean(d**2)), d.mean()
+    metres = {"mm": 1.0, "no 1000": scale}.get(kind, scale / 1000)
+    table = DECREE_MM if kind == "decree" else PEC_PCD_MM
+    for name, (pec, ep) in table.items():
+        pec, ep = pec * metres, ep * metres
+        within = np.mean(d <= pec) >= 0.9
+        passes = {"rms vs pec": rms <= pec, "90 only": within,
+                  "mean": within and mean <= ep}.get(kind, within and rms <= ep)
+        if passes:
+            return name
+    return "none"
+
+
 WINDOW, DX, DY = np.array([[10.0, 20.0], [30.0, 60.0]]), 0.3, 0.6
 
 
@@ -224,6 +256,79 @@ def suboptimal():
     return poor.solution, truth
 
 
+@functools.cache
+def bias_task():
+    """Exercises 4c's settings: a delivered RPC with a bias, five GCPs, a colleague's shift and
+    twelve check points' residuals (measured minus RPC)."""
+    from rsgeo import terrain
+
+    scene = synthetic.raw_scene(off_nadir_deg=5.0, simulate=False)
+    vendor = scene.sensor.with_knowledge_errors(roll_deg=-0.00003, pitch_deg=0.0009,
+                                               yaw_deg=-0.001)
+    rpc = terrain.fit_rpc_to_sensor(vendor, scene.crs, scene.bounds, scene.height_range)
+    rows, cols = scene.sensor.shape
+    layout = np.array([[0.15, 0.2], [0.85, 0.15], [0.2, 0.85], [0.8, 0.8], [0.45, 0.55]])
+    gcps = scene.control_points(layout * (cols, rows), noise_px=0.3, seed=4)
+    projected = np.column_stack(rpc.project(gcps.lon, gcps.lat, gcps.height))
+    others = scene.control_points(5, noise_px=0.3, seed=11, margin=0.15)
+    colleague = np.array([terrain.refine_rpc(rpc, others.rpc_gcps).parameters[k]
+                          for k in ("a0", "b0")])
+    checks = scene.control_points(12, noise_px=0.3, seed=12)
+    residuals = checks.image_xy - np.column_stack(rpc.project(checks.lon, checks.lat,
+                                                              checks.height))
+    return gcps.image_xy, projected, residuals, colleague, 10.0
+
+
+def bias_shift(kind="right"):
+    measured, projected = bias_task()[:2]
+    d = measured - projected
+    return {"right": d.mean(axis=0), "sign": (projected - measured).mean(axis=0),
+            "abs": np.abs(d).mean(axis=0), "rms": np.sqrt(np.mean(d ** 2, axis=0)),
+            "swapped": d.mean(axis=0)[::-1], "median": np.median(d, axis=0)}[kind]
+
+
+def compensated_rms(kind="right"):
+    _, _, residuals, shift, size = bias_task()
+    left = residuals + shift if kind == "plus" else residuals - shift
+    if kind == "before":
+        left = residuals
+    squares = np.sum(left ** 2, axis=1)
+    rms_px = np.sqrt(np.mean(squares))
+    return {"right": rms_px * size, "plus": rms_px * size, "before": rms_px * size,
+            "pixels": rms_px, "divided": rms_px / size,
+            "mean distance": np.mean(np.sqrt(squares)) * size,
+            "2n": np.sqrt(np.mean(left ** 2)) * size}[kind]
+
+
+@functools.cache
+def nat1_corners():
+    """Exercise 2b.3's points: the nat1 scene's four corners and centre, SAD69 / UTM 23S."""
+    from rsgeo import data
+
+    nat1 = data.load("nat1")
+    rows, cols = nat1.array.shape
+    return np.array([nat1.transform @ (c, r) for c, r in [(0, 0), (cols, 0), (0, rows),
+                                                          (cols, rows), (cols / 2, rows / 2)]])
+
+
+def grid_gap(kind="right", pixel=25.0):
+    """Grid (EPSG:5528) vs three parameters (EPSG:15485) at nat1's corners, as students err."""
+    from rsgeo import georef
+
+    corners = nat1_corners()
+    grid, three = (georef.transform_points(corners, "EPSG:29193", "EPSG:31983", transformation=t)
+                   for t in ("EPSG:5528", "EPSG:15485"))
+    dx, dy = (grid - three).T
+    gap = np.hypot(dx, dy)
+    shifts = np.hypot(*(grid - corners).T), np.hypot(*(three - corners).T)
+    return {"right": gap.max() / pixel, "metres": gap.max(), "grid shift": shifts[0].max() / pixel,
+            "three shift": shifts[1].mean() / pixel,
+            "lengths": np.abs(shifts[0] - shifts[1]).max() / pixel,
+            "dx only": np.abs(dx).max() / pixel, "dy only": np.abs(dy).max() / pixel,
+            "l1": (np.abs(dx) + np.abs(dy)).max() / pixel, "mean": gap.mean() / pixel,
+            "min": gap.min() / pixel, "times": gap.max() * pixel}[kind]
+
+
 # -- Each check: how to call it, its right answer, its expected value --------------------------
 
 SKEW_ARGS = dict(latitude_deg=-30.0, frame_length_km=113.0, altitude_km=778.0,
@@ -247,6 +352,7 @@ CHECKS = {
                lambda: min((1, 2, 3), key=lambda n: accuracy.fit_with_check_points(
                    georeferencing()[4].map_xy, georeferencing()[4].image_xy, n,
                    georeferencing()[5])[2]), None),
+    "pec": (lambda a: exercises.check_pec_class(a, *pec_task()), pec_answer, None),
     "bilinear": (lambda a: exercises.check_bilinear(a, WINDOW, DX, DY), bilinear, bilinear),
     "method": (exercises.check_method_for_classes, lambda: "nearest", None),
     "overshoot": (lambda a: exercises.check_overshoot(a, *step_edge()), overshoot, overshoot),
@@ -263,6 +369,12 @@ CHECKS = {
     "decode": (lambda a: exercises.check_decode(a, CHROMOSOME), decoded, None),
     "segment": (lambda a: exercises.check_suboptimal_segment(a, *suboptimal()),
                 lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]) + 1, None),
+    "gridgap": (lambda a: exercises.check_grid_vs_parameters(a, nat1_corners(), "EPSG:29193",
+                                                             "EPSG:31983", pixel_size=25.0),
+                grid_gap, grid_gap),
+    "bias_shift": (lambda a: exercises.check_bias_shift(a, *bias_task()[:2]), bias_shift, None),
+    "compensated_rms": (lambda a: exercises.check_compensated_rms(a, *bias_task()[2:]),
+                        compensated_rms, compensated_rms),
 }
 
 
@@ -319,6 +431,13 @@ MISTAKES = [
     ("blunder", lambda: georeferencing()[3]["residual"].nlargest(2).index[1],
      "drags its neighbours"),
     ("degree", lambda: 3, "lowest RMS on the GCPs used in the fit"),
+    ("pec", lambda: pec_answer("rms vs pec"), "goes with the EP, not the PEC"),
+    ("pec", lambda: pec_answer("90 only"), "RMS within the class's EP too"),
+    ("pec", lambda: pec_answer("fit"), "GCPs' fitting residuals"),
+    ("pec", lambda: pec_answer("mm"), "millimetres on the map"),
+    ("pec", lambda: pec_answer("no 1000"), "divide by 1000"),
+    ("pec", lambda: pec_answer("decree"), "Decreto 89.817's (printed maps"),
+    ("pec", lambda: pec_answer("mean"), "not their mean"),
     ("bilinear", lambda: bilinear(dx=DY, dy=DX), "dx and dy are swapped"),
     ("bilinear", lambda: bilinear(dx=1 - DX, dy=1 - DY), "weights are reversed"),
     ("bilinear", lambda: bilinear(dx=1 - DX), "along the line are reversed"),
@@ -359,6 +478,27 @@ MISTAKES = [
     ("decode", lambda: decoded("popcount"), "counted the 1 bits"),
     ("segment", lambda: int(np.flatnonzero(suboptimal()[0] != suboptimal()[1])[0]),
      "count from 0"),
+    ("gridgap", lambda: grid_gap("metres"), "difference in metres"),
+    ("gridgap", lambda: grid_gap("grid shift"), "the grid's shift itself"),
+    ("gridgap", lambda: grid_gap("three shift"), "three-parameter shift itself"),
+    ("gridgap", lambda: grid_gap("lengths"), "subtracted the lengths"),
+    ("gridgap", lambda: grid_gap("dx only"), "only the easting's difference"),
+    ("gridgap", lambda: grid_gap("dy only"), "only the northing's difference"),
+    ("gridgap", lambda: grid_gap("l1"), "|dx| + |dy|"),
+    ("gridgap", lambda: grid_gap("mean"), "mean distance"),
+    ("gridgap", lambda: grid_gap("min"), "smallest distance"),
+    ("gridgap", lambda: grid_gap("times"), "Multiplying by the pixel size"),
+    ("bias_shift", lambda: bias_shift("sign"), "Mind the sign"),
+    ("bias_shift", lambda: bias_shift("abs"), "absolute values"),
+    ("bias_shift", lambda: bias_shift("rms"), "RMS of the residuals"),
+    ("bias_shift", lambda: bias_shift("swapped"), "col and row are swapped"),
+    ("bias_shift", lambda: bias_shift("median"), "median"),
+    ("compensated_rms", lambda: compensated_rms("plus"), "Mind the sign"),
+    ("compensated_rms", lambda: compensated_rms("before"), "before the compensation"),
+    ("compensated_rms", lambda: compensated_rms("pixels"), "That is in pixels"),
+    ("compensated_rms", lambda: compensated_rms("divided"), "do not divide"),
+    ("compensated_rms", lambda: compensated_rms("mean distance"), "mean of the distances"),
+    ("compensated_rms", lambda: compensated_rms("2n"), "Dividing by 2n"),
 ]
 
 
@@ -375,7 +515,7 @@ def test_a_recognised_mistake_gets_its_hint(name, answer, hint):
 # -- Wrong forms get a message about the form ----------------------------------------------------
 
 NUMERIC = ["skew", "growth", "swath", "rms", "bilinear", "overshoot", "gain", "offset", "fitness",
-           "levels", "degree", "filter", "segment"]
+           "levels", "degree", "filter", "segment", "gridgap", "compensated_rms"]
 FORMS = [
     (None, "did your function return its value"),
     ("2.5", "not a string"),
@@ -417,6 +557,12 @@ SPECIFIC_FORMS = [
     ("degree", 0, "one of 1, 2 or 3"),
     ("degree", 4, "one of 1, 2 or 3"),
     ("degree", 2.5, "whole number"),
+    ("pec", "d", "write 'D'"),
+    ("pec", "class D", "write 'D'"),
+    ("pec", "None", "write 'none'"),
+    ("pec", "E", "not a PEC-PCD class"),
+    ("pec", None, "the string 'none'"),
+    ("pec", 4, "not a class"),
     ("method", "near", "not one of resample.METHODS"),
     ("method", "Nearest", "lower case"),
     ("method", "nearest neighbour", "not one of resample.METHODS"),
@@ -438,6 +584,10 @@ SPECIFIC_FORMS = [
     ("segment", 0, "numbered from 1"),
     ("segment", 9, "numbered 1 to 8"),
     ("segment", [2, 3], "ONE segment"),
+    ("bias_shift", None, "did your function return its value"),
+    ("bias_shift", "0.1 -1.3", "text"),
+    ("bias_shift", [0.1], "holds 1 value"),
+    ("bias_shift", [0.1, np.nan], "NaN"),
 ]
 
 
@@ -629,6 +779,13 @@ def exercise_check_call(notebook, check):
             return ([ast.unparse(a) for a in call.args],
                     {k.arg: ast.unparse(k.value) for k in call.keywords})
     raise AssertionError(f"{check} not called in {notebook}")
+
+
+def test_exercise_2b_3_checks_the_points_tested_here():
+    assert exercise_check_call("ex02b_datums", "check_grid_vs_parameters") == (
+        ["gap_px", "corners", "nat1.crs", "'EPSG:31983'"], {"pixel_size": "25.0"})
+    source = "\n".join(c.source for c in exercise_text())
+    assert 'nat1 = data.load("nat1")' in source
 
 
 def test_task_4_5_asks_for_another_grid_than_chapter_4s_table():

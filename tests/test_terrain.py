@@ -2,7 +2,9 @@
 
 GDAL through rasterio: ``RPCTransformer`` for the RPC equations, ``reproject(..., rpcs=...,
 RPC_DEM=...)`` (exact transformer, ``tolerance=0``; DEM bilinear; plain kernels, XSCALE =
-YSCALE = 1) for the orthoimage.
+YSCALE = 1) for the orthoimage. The synthetic DEMs are heights above the ellipsoid
+(``dem_vertical="ellipsoidal"``), as GDAL takes a DEM without a vertical CRS; with
+``"EGM96"`` the orthoimage is GDAL's on the DEM plus PROJ's geoid undulation.
 """
 
 import os
@@ -225,20 +227,24 @@ def test_dem_not_covering_or_with_holes_is_refused(scene):
     _, rpc, dem, dem_gt, image = scene
     grid = affine.Affine(0.0002, 0, LON0 - 0.04, 0, -0.0002, LAT0 + 0.04)
     with pytest.raises(ValueError, match=r"DEM does not cover \d+ of 160000 points"):
-        orthorectify(image, rpc, dem[:50], dem_gt, grid, (400, 400), "nearest")
+        orthorectify(image, rpc, dem[:50], dem_gt, grid, (400, 400), "nearest",
+                     dem_vertical="ellipsoidal")
     holed = dem.copy()
     holed[60, 61] = np.nan
     with pytest.raises(ValueError, match="nodata holes .*row 60, col 61"):
-        orthorectify(image, rpc, holed, dem_gt, grid, (400, 400), "nearest")
+        orthorectify(image, rpc, holed, dem_gt, grid, (400, 400), "nearest",
+                     dem_vertical="ellipsoidal")
     holed[60, 61] = -9999
     with pytest.raises(ValueError, match="nodata holes"):
-        orthorectify(image, rpc, holed, dem_gt, grid, (400, 400), "nearest", dem_nodata=-9999)
+        orthorectify(image, rpc, holed, dem_gt, grid, (400, 400), "nearest", dem_nodata=-9999,
+                     dem_vertical="ellipsoidal")
     with pytest.raises(ValueError, match="no output cell sees the image"):
         flat = affine.Affine(0.2, 0, LON0 - 1, 0, -0.2, LAT0 + 1)
         orthorectify(image, rpc, np.zeros((10, 10)), flat, grid @ affine.Affine.translation(
-            2000, 0), (40, 40), "nearest")
+            2000, 0), (40, 40), "nearest", dem_vertical="ellipsoidal")
     with pytest.raises(ValueError, match="lacks LINE_OFF"):
-        orthorectify(image, {"SAMP_OFF": 1}, dem, dem_gt, grid, (40, 40), "nearest")
+        orthorectify(image, {"SAMP_OFF": 1}, dem, dem_gt, grid, (40, 40), "nearest",
+                     dem_vertical="ellipsoidal")
 
 
 EDGES_4326 = (affine.Affine(0.00013, 0, LON0 - 0.055, 0, -0.00013, LAT0 + 0.055), (846, 846))
@@ -250,7 +256,8 @@ def test_orthorectify_matches_gdal_in_epsg_4326(scene, method, nodata):
     """Output grid and DEM in EPSG:4326, the grid larger than the image's footprint."""
     _, rpc, dem, dem_gt, image = scene
     grid, shape = EDGES_4326
-    ours = orthorectify(image, rpc, dem, dem_gt, grid, shape, method, nodata=nodata)
+    ours = orthorectify(image, rpc, dem, dem_gt, grid, shape, method, nodata=nodata,
+                        dem_vertical="ellipsoidal")
     gdal = gdal_ortho(image, rpc, dem, dem_gt, grid, shape, method, nodata)
     differ = ours != gdal
     if method == "cubic" and nodata == 0:
@@ -261,7 +268,7 @@ def test_orthorectify_matches_gdal_in_epsg_4326(scene, method, nodata):
         # replaces valid values that collide with dstnodata inconsistently across its warp
         # paths (OSGeo/gdal#11711, changed in 3.11 by OSGeo/gdal#11713).
         raw = orthorectify(image.astype(np.float64), rpc, dem, dem_gt, grid, shape, "cubic",
-                           nodata=None)
+                           nodata=None, dem_vertical="ellipsoidal")
         assert np.all(ours[differ] == 1) and np.all(gdal[differ] == 0)
         assert np.all(raw[differ] < 0.5)
         assert 0 < differ.sum() < 0.01 * np.count_nonzero(gdal)
@@ -278,7 +285,8 @@ def test_orthorectify_dem_edge_fallback_matches_gdal(scene):
     grid = affine.Affine(0.0002, 0, west, 0, -0.0002, north)
     shape = (498, 498)
     for method in ("nearest", "bilinear"):
-        ours = orthorectify(image, rpc, crop, crop_gt, grid, shape, method, nodata=None)
+        ours = orthorectify(image, rpc, crop, crop_gt, grid, shape, method, nodata=None,
+                            dem_vertical="ellipsoidal")
         gdal = gdal_ortho(image, rpc, crop, crop_gt, grid, shape, method, None)
         assert np.count_nonzero(ours != gdal) == 0
 
@@ -292,7 +300,7 @@ def test_orthorectify_projected_grid_against_gdal(scene):
     grid = affine.Affine(15.0, 0, round(x[0]) - 5000, 0, -15.0, round(y[0]) + 5000)
     for method in ("nearest", "bilinear", "cubic"):
         ours = orthorectify(image, rpc, dem, dem_gt, grid, (667, 667), method, nodata=None,
-                            dst_crs="EPSG:31985")
+                            dst_crs="EPSG:31985", dem_vertical="ellipsoidal")
         gdal = gdal_ortho(image, rpc, dem, dem_gt, grid, (667, 667), method, None,
                           dst_crs="EPSG:31985")
         # measured: 0 differing pixels for each method (rasterio 1.4, GDAL 3.10)
@@ -309,7 +317,8 @@ def test_orthorectify_removes_relief_displacement(scene):
     x, y, h = sensor.ground_on_dem(cols + 0.5, rows + 0.5, dem, _metric_dem(dem, dem_gt)[1])
     lon_ramp[:] = x / KX + LON0
     grid = affine.Affine(0.0002, 0, LON0 - 0.03, 0, -0.0002, LAT0 + 0.03)
-    ortho = orthorectify(lon_ramp, rpc, dem, dem_gt, grid, (300, 300), "bilinear", nodata=None)
+    ortho = orthorectify(lon_ramp, rpc, dem, dem_gt, grid, (300, 300), "bilinear", nodata=None,
+                         dem_vertical="ellipsoidal")
     centre_lon = grid.c + (np.arange(300) + 0.5) * grid.a
     # bilinear on a smooth ramp: within a small fraction of a 20 m pixel (1 m ~ 1e-5 degree)
     assert np.abs(ortho - centre_lon[None, :]).max() < 2e-5
@@ -418,17 +427,21 @@ def test_orthorectify_reads_a_gdal_tuple_and_refuses_one_in_affine_order(scene):
     # an Affine-order tuple read as GDAL's put the DEM's heights 275 m off without a word
     _, rpc, dem, dem_gt, image = scene
     grid = affine.Affine(0.0002, 0, LON0 - 0.02, 0, -0.0002, LAT0 + 0.02)
-    reference = orthorectify(image, rpc, dem, dem_gt, grid, (200, 200), "bilinear")
+    reference = orthorectify(image, rpc, dem, dem_gt, grid, (200, 200), "bilinear",
+                             dem_vertical="ellipsoidal")
     by_tuples = orthorectify(image, rpc, dem, dem_gt.to_gdal(), grid.to_gdal(), (200, 200),
-                             "bilinear")
+                             "bilinear", dem_vertical="ellipsoidal")
     np.testing.assert_array_equal(by_tuples, reference)
     with pytest.raises(ValueError, match=r"dem_transform .* has pixel width 0 .*affine.Affine\(\*"
                                          r"dem_transform\).*Affine.from_gdal"):
-        orthorectify(image, rpc, dem, tuple(dem_gt)[:6], grid, (200, 200), "bilinear")
+        orthorectify(image, rpc, dem, tuple(dem_gt)[:6], grid, (200, 200), "bilinear",
+                     dem_vertical="ellipsoidal")
     with pytest.raises(ValueError, match="dst_transform .* has pixel width 0"):
-        orthorectify(image, rpc, dem, dem_gt, tuple(grid)[:6], (200, 200), "bilinear")
+        orthorectify(image, rpc, dem, dem_gt, tuple(grid)[:6], (200, 200), "bilinear",
+                     dem_vertical="ellipsoidal")
     with pytest.raises(TypeError, match="dst_transform must be an affine.Affine or 6 finite"):
-        orthorectify(image, rpc, dem, dem_gt, "EPSG:4326", (200, 200), "bilinear")
+        orthorectify(image, rpc, dem, dem_gt, "EPSG:4326", (200, 200), "bilinear",
+                     dem_vertical="ellipsoidal")
     with pytest.raises(ValueError, match="dem_transform is None"):
         dem_height(dem, None, LON0, LAT0)
 
@@ -438,14 +451,16 @@ def test_orthorectify_names_an_unknown_crs(scene, argument):
     _, rpc, dem, dem_gt, image = scene
     grid = affine.Affine(0.0002, 0, LON0 - 0.02, 0, -0.0002, LAT0 + 0.02)
     with pytest.raises(ValueError, match=f"{argument} 'EPSG:999999' is not a CRS that PROJ knows"):
-        orthorectify(image, rpc, dem, dem_gt, grid, (20, 20), **{argument: "EPSG:999999"})
+        orthorectify(image, rpc, dem, dem_gt, grid, (20, 20), **{argument: "EPSG:999999"},
+                     dem_vertical="ellipsoidal")
 
 
 def test_orthorectify_refuses_an_output_too_big_before_allocating_it(scene):
     _, rpc, dem, dem_gt, image = scene
     grid = affine.Affine(1e-7, 0, LON0 - 0.02, 0, -1e-7, LAT0 + 0.02)
     with pytest.raises(ValueError, match=r"dst_shape=\(400000, 400000\).*149\.0 GiB.*coarser"):
-        orthorectify(image, rpc, dem, dem_gt, grid, (400_000, 400_000), "nearest")
+        orthorectify(image, rpc, dem, dem_gt, grid, (400_000, 400_000), "nearest",
+                     dem_vertical="ellipsoidal")
 
 
 @pytest.mark.parametrize("strip_rows", [1, 7, 64, 1000])
@@ -454,11 +469,11 @@ def test_orthorectify_in_strips_is_the_same_image(scene, strip_rows):
     grid = affine.Affine(0.0004, 0, LON0 - 0.03, 0, -0.0004, LAT0 + 0.03)
     bands = np.stack([image, image[::-1]])
     whole = orthorectify(bands, rpc, dem, dem_gt, grid, (150, 130), "cubic", nodata=None,
-                         strip_rows=10 ** 6)
+                         strip_rows=10 ** 6, dem_vertical="ellipsoidal")
     assert whole.shape == (2, 150, 130)
     np.testing.assert_array_equal(
         orthorectify(bands, rpc, dem, dem_gt, grid, (150, 130), "cubic", nodata=None,
-                     strip_rows=strip_rows), whole)
+                     strip_rows=strip_rows, dem_vertical="ellipsoidal"), whole)
 
 
 def test_orthorectify_strips_count_dem_problems_over_the_whole_grid(scene):
@@ -468,19 +483,20 @@ def test_orthorectify_strips_count_dem_problems_over_the_whole_grid(scene):
     for strip_rows in (None, 50, 400):
         with pytest.raises(ValueError, match=r"DEM does not cover \d+ of 160000 points") as error:
             orthorectify(image, rpc, dem[:50], dem_gt, grid, (400, 400), "nearest",
-                         strip_rows=strip_rows)
+                         strip_rows=strip_rows, dem_vertical="ellipsoidal")
         messages.append(str(error.value))
     holed = dem.copy()
     holed[100, 61] = np.nan                     # under the grid's last strips only
     for strip_rows in (50, 400):
         with pytest.raises(ValueError, match="nodata holes .*row 100, col 61") as error:
             orthorectify(image, rpc, holed, dem_gt, grid, (400, 400), "nearest",
-                         strip_rows=strip_rows)
+                         strip_rows=strip_rows, dem_vertical="ellipsoidal")
         messages.append(str(error.value))
     assert len(set(messages[:3])) == 1 and messages[3] == messages[4]
     for bad, kind in [(0, ValueError), (2.5, ValueError), ("10", TypeError)]:
         with pytest.raises(kind, match="strip_rows"):
-            orthorectify(image, rpc, dem, dem_gt, grid, (40, 40), strip_rows=bad)
+            orthorectify(image, rpc, dem, dem_gt, grid, (40, 40), strip_rows=bad,
+                         dem_vertical="ellipsoidal")
 
 
 # -- issue 27: the RPC and the DEM in one compiled pass, PROJ on the arrays --------------------
@@ -558,7 +574,8 @@ def test_orthorectify_refuses_latitudes_beyond_the_pole_that_a_dem_covers(scene)
     dem_gt = affine.Affine(0.1, 0, LON0 - 1, 0, -0.1, 95.0)      # 95 to 85 degrees
     grid = affine.Affine(0.01, 0, LON0 - 0.1, 0, -0.01, 91.0)
     with pytest.raises(ValueError, match=r"lat must be in \[-90, 90\] degrees, got 90.995"):
-        orthorectify(image, rpc, np.zeros((100, 30)), dem_gt, grid, (20, 20), "nearest")
+        orthorectify(image, rpc, np.zeros((100, 30)), dem_gt, grid, (20, 20), "nearest",
+                     dem_vertical="ellipsoidal")
 
 
 def test_orthorectify_does_not_depend_on_threads_or_strips(scene):
@@ -570,9 +587,9 @@ def test_orthorectify_does_not_depend_on_threads_or_strips(scene):
     lonlat = affine.Affine(0.0003, 0, LON0 - 0.045, 0, -0.0003, LAT0 + 0.045)
     for grid, crs in ((lonlat, "EPSG:4326"), (utm, "EPSG:31985")):
         one = orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
-                           dst_crs=crs, strip_rows=37)
+                           dst_crs=crs, strip_rows=37, dem_vertical="ellipsoidal")
         two = orthorectify(image, rpc, dem, dem_gt, grid, (300, 300), "cubic", nodata=None,
-                           dst_crs=crs, num_threads=2)
+                           dst_crs=crs, num_threads=2, dem_vertical="ellipsoidal")
         np.testing.assert_array_equal(one, two)
 
 
@@ -587,8 +604,178 @@ def test_orthorectify_grid_and_dem_in_utm_against_gdal(scene):
     grid = affine.Affine(20.0, 0, x0 - 5000, 0, -20.0, y0 + 5000)
     for method in ("nearest", "bilinear"):
         ours = orthorectify(image, rpc, dem, dem_gt, grid, (500, 500), method, nodata=None,
-                            dst_crs="EPSG:31985", dem_crs="EPSG:31985")
+                            dst_crs="EPSG:31985", dem_crs="EPSG:31985", dem_vertical="ellipsoidal")
         gdal = gdal_ortho(image, rpc, dem, dem_gt, grid, (500, 500), method, None,
                           dst_crs="EPSG:31985", dem_crs="EPSG:31985")
         assert np.count_nonzero(ours) > 0.5 * ours.size
         assert np.count_nonzero(ours != gdal) == 0
+
+
+# -- issue 28: the DEM's vertical datum (geoid) ---------------------------------
+
+def _column_ramp(n=520):
+    """An image whose bilinear value at (col, row) is col: an orthoimage of it holds the raw
+    image column each cell was taken from."""
+    return np.tile(np.arange(n) + 0.5, (n, 1))
+
+
+GEOID_GRID = (affine.Affine(0.0002, 0, LON0 - 0.03, 0, -0.0002, LAT0 + 0.03), (300, 300))
+
+
+def test_orthorectify_asks_what_the_dem_is_above(scene):
+    from rsgeo.errors import GridError
+
+    _, rpc, dem, dem_gt, image = scene
+    grid, _shape = GEOID_GRID
+    for vertical in (None, "orthometric", "EGM2008"):
+        with pytest.raises(GridError, match=r"dem_vertical must be one of 'ellipsoidal', "
+                                            r"'EGM96', got .*above the WGS 84 ellipsoid"):
+            orthorectify(image, rpc, dem, dem_gt, grid, (20, 20), "nearest",
+                         dem_vertical=vertical)
+    far = affine.Affine(0.1, 0, -80.0, 0, -0.1, 10.0)        # a DEM beyond the shipped geoid
+    with pytest.raises(GridError, match="outside the shipped EGM96 grid"):
+        orthorectify(image, rpc, np.zeros((200, 500)), far, grid, (20, 20), "nearest",
+                     dem_vertical="EGM96")
+
+
+def test_forgetting_the_geoid_moves_the_orthoimage_by_n_tan_theta(scene):
+    """The sensor sees heights above the ellipsoid (``dem``); an SRTM-like DEM of the same
+    ground holds H = h - N. Given as "EGM96" it gives the true orthoimage; given as if it were
+    ellipsoidal (N forgotten), every point moves -N·tan θ, N = -5.4 m here."""
+    from rsgeo.heights import geoid_on_grid, geoid_undulation
+
+    sensor, rpc, dem, dem_gt, _ = scene
+    above_geoid = dem - geoid_on_grid(dem_gt, dem.shape)
+    grid, shape = GEOID_GRID
+    ramp = _column_ramp()
+    truth, right, forgot = (
+        orthorectify(ramp, rpc, heights, dem_gt, grid, shape, "bilinear", nodata=None,
+                     dem_vertical=vertical)
+        for heights, vertical in ((dem, "ellipsoidal"), (above_geoid, "EGM96"),
+                                  (above_geoid, "ellipsoidal")))
+    assert np.abs(right - truth).max() < 1e-6
+    lon, lat = np.meshgrid(grid.c + (np.arange(shape[1]) + 0.5) * grid.a,
+                           grid.f + (np.arange(shape[0]) + 0.5) * grid.e)
+    n = geoid_undulation(lon, lat)
+    theta = np.radians(sensor.view_angle(truth))
+    pixel = sensor.ifov * sensor.altitude / np.cos(theta) ** 2     # across track, metres
+    predicted = -n * np.tan(theta) / pixel                         # columns, east: N < 0
+    np.testing.assert_allclose(forgot - truth, predicted, rtol=0.01)
+    assert 0.09 < (forgot - truth).mean() < 0.11                   # 5.4 m · tan 20° / 20 m
+
+
+@pytest.mark.parametrize("dem_crs", ["EPSG:4326", "EPSG:31985"])
+def test_orthorectify_egm96_is_gdal_on_the_dem_made_ellipsoidal_by_proj(scene, dem_crs):
+    """GDAL's RPC transformer given DEM + N, N by PROJ at each DEM cell: the same orthoimage."""
+    from rasterio.warp import transform
+
+    from rsgeo.heights import geoid_undulation
+
+    _, rpc, dem, dem_gt, _ = scene
+    if dem_crs == "EPSG:31985":
+        x, y = transform("EPSG:4326", dem_crs, [LON0], [LAT0])
+        dem_gt = affine.Affine(110.0, 0, round(x[0]) - 6600, 0, -110.0, round(y[0]) + 6600)
+    cols, rows = np.meshgrid(np.arange(dem.shape[1]) + 0.5, np.arange(dem.shape[0]) + 0.5)
+    x, y = dem_gt.c + cols * dem_gt.a, dem_gt.f + rows * dem_gt.e
+    lon, lat = (np.reshape(v, x.shape) for v in transform(dem_crs, "EPSG:4326", x.ravel(),
+                                                          y.ravel()))
+    ellipsoidal = dem + geoid_undulation(lon, lat)
+    grid, shape = GEOID_GRID
+    ramp = _column_ramp()
+    ours = orthorectify(ramp, rpc, dem, dem_gt, grid, shape, "bilinear", nodata=None,
+                        dem_crs=dem_crs, dem_vertical="EGM96")
+    gdal = gdal_ortho(ramp, rpc, ellipsoidal, dem_gt, grid, shape, "bilinear", None,
+                      dem_crs=dem_crs)
+    np.testing.assert_allclose(ours, gdal, rtol=0, atol=1e-6)
+
+
+def test_orthorectify_egm96_is_n_at_each_point_as_gdal_applies_it(scene):
+    """gdalwarp with a DEM in EGM96 height adds N at each output point (PROJ's); rsgeo adds it
+    at the DEM's cells: the raw columns agree to far below a thousandth of a pixel."""
+    from rsgeo.heights import geoid_undulation
+
+    _, rpc, dem, dem_gt, _ = scene
+    grid, shape = GEOID_GRID
+    ours = orthorectify(_column_ramp(), rpc, dem, dem_gt, grid, shape, "bilinear", nodata=None,
+                        dem_vertical="EGM96")
+    lon, lat = np.meshgrid(grid.c + (np.arange(shape[1]) + 0.5) * grid.a,
+                           grid.f + (np.arange(shape[0]) + 0.5) * grid.e)
+    h = dem_height(dem, dem_gt, lon, lat) + geoid_undulation(lon, lat)
+    col, _row = rpc.project(lon, lat, h)
+    assert np.abs(ours - col).max() < 1e-4
+
+
+# -- issue 28: occlusion behind buildings and canopy ----------------------------
+
+def test_occluded_is_what_a_line_of_sight_through_the_profile_finds():
+    from rsgeo.terrain import occluded
+
+    rng = np.random.default_rng(11)
+    d = np.cumsum(rng.uniform(0.5, 3.0, 300))
+    h = np.cumsum(rng.normal(0, 4.0, 300))
+    counts = []
+    for angle in (10.0, 30.0, 60.0):
+        hidden = occluded(d, h, angle)
+        # independently: each point's line of sight against the profile, straight between
+        # samples, at its samples and 20 points in each interval
+        between = np.linspace(0, 1, 21)[:-1]
+        s_all = (d[:-1, None] + np.diff(d)[:, None] * between).ravel()
+        for i in range(1, 300):
+            s = s_all[s_all < d[i] - 1e-9]
+            line = h[i] + (d[i] - s) / np.tan(np.radians(angle))
+            assert hidden[i] == bool((np.interp(s, d, h) > line).any()), (angle, i)
+        assert not hidden[0]
+        counts.append(hidden.sum())
+    assert 0 < counts[0] < counts[1] < counts[2] < 300       # more hidden the more oblique
+
+
+def test_occluded_ground_behind_a_building_is_h_tan_theta_long():
+    from rsgeo.terrain import occluded
+
+    d = np.arange(0.0, 200.0, 0.1)
+    h = np.where((d >= 50) & (d < 70), 25.0, 0.0)                # a 25 m building, 20 m deep
+    for angle in (15.0, 30.0):
+        hidden = occluded(d, h, angle) & (h == 0)
+        length = d[hidden].max() - d[hidden].min() + 0.1
+        assert length == pytest.approx(25.0 * np.tan(np.radians(angle)), abs=0.15)
+        assert d[hidden].min() == pytest.approx(70.0)
+    assert not occluded(d, h, 0.0).any()
+    with pytest.raises(ValueError, match="increase strictly"):
+        occluded(d[::-1], h, 30.0)
+    with pytest.raises(ValueError, match=r"\[0, 90\)"):
+        occluded(d, h, 90.0)
+    with pytest.raises(ValueError, match="same length"):
+        occluded(d, h[:-1], 30.0)
+
+
+# -- issue 28: exercise 4b.4, forgetting the geoid ------------------------------
+
+GEOID_TASK = dict(geoid_undulation_m=24.47, view_zenith_deg=20.0, pixel_m=5.0)  # Rio Branco
+
+
+def test_check_geoid_shift_right_answer_and_each_mistake():
+    n, theta, pixel = GEOID_TASK.values()
+    tan, sin = np.tan(np.radians(theta)), np.sin(np.radians(theta))
+    right = -n * tan / pixel                       # taken too low: towards the nadir
+    assert exercises.check_geoid_shift(right, **GEOID_TASK)
+    for wrong, hint in ((n * tan / pixel, "Mind the sign"),
+                        (-n * sin / pixel, "N·sin θ"),
+                        (-n * tan, "in metres"),
+                        (-n / pixel, "without the view angle"),
+                        (-n, "without the view angle"),
+                        (-n * np.tan(theta) / pixel, "radians")):
+        verdict = exercises.check_geoid_shift(wrong, **GEOID_TASK)
+        assert not verdict and hint in verdict.hint, (wrong, verdict)
+        assert f"{right:.3g}" not in repr(verdict) and f"{abs(right):.3g}" not in repr(verdict)
+    assert not exercises.check_geoid_shift("1.8", **GEOID_TASK)
+    with pytest.raises(exercises.ExerciseNotSolved):
+        exercises.check_geoid_shift(..., **GEOID_TASK)
+
+
+def test_exercise_4b4_asks_about_another_place_than_the_chapter():
+    # the chapter's Olinda (N < 0, 30°, 10 m) would give its own glued answer away
+    from rsgeo.heights import geoid_undulation
+
+    assert GEOID_TASK["geoid_undulation_m"] == pytest.approx(
+        float(geoid_undulation(-67.81, -9.97)), abs=0.01)
+    assert GEOID_TASK["geoid_undulation_m"] > 0 and GEOID_TASK["view_zenith_deg"] != 30.0

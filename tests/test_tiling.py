@@ -293,12 +293,14 @@ def test_tiles_of_orthorectify_equal_one_orthorectify():
     # 2**-10 degree pixels, latitudes within one binade (-4 .. -8): the sums are exact
     grid = affine.Affine(2.0**-10, 0, -34.93, 0, -2.0**-10, -7.951)
     shape = (40, 60)
-    whole = orthorectify(image, rpc, dem, dem_transform, grid, shape, "cubic")
+    whole = orthorectify(image, rpc, dem, dem_transform, grid, shape, "cubic",
+                         dem_vertical="ellipsoidal")
     tiled = np.empty_like(whole)
     for tile in tiling.tiles(shape, grid, (16, 25)):
         rows, cols = tile.shape
         tiled[tile.row:tile.row + rows, tile.col:tile.col + cols] = orthorectify(
-            image, rpc, dem, dem_transform, tile.transform, tile.shape, "cubic")
+            image, rpc, dem, dem_transform, tile.transform, tile.shape, "cubic",
+            dem_vertical="ellipsoidal")
     assert np.count_nonzero(tiled != whole) == 0
 
 

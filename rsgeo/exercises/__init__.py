@@ -23,8 +23,14 @@ from .engine import (
                      recognised_mistakes,
 )
 from .ex01_distortions import check_pixel_growth, check_skew, check_swath
-from .ex02_georeferencing import check_blunder, check_degree_choice, check_design_matrix, check_rms
-from .ex02b_datums import check_datum_shift_pixels
+from .ex02_georeferencing import (
+                     check_blunder,
+                     check_degree_choice,
+                     check_design_matrix,
+                     check_pec_class,
+                     check_rms,
+)
+from .ex02b_datums import check_datum_shift_pixels, check_grid_vs_parameters
 from .ex03b_models import check_helmert, check_model_choice, check_projective_matrix
 from .ex04_resampling import (
                      check_bilinear,
@@ -33,7 +39,13 @@ from .ex04_resampling import (
                      check_output_pixel_size,
                      check_overshoot,
 )
-from .ex04b_terrain import check_displacement, check_height_budget, check_rpc_position
+from .ex04b_terrain import (
+                     check_displacement,
+                     check_geoid_shift,
+                     check_height_budget,
+                     check_rpc_position,
+)
+from .ex04c_sensors import check_bias_shift, check_compensated_rms
 from .ex05_regression import check_filter_size, check_gain_offset, check_truncation_levels
 from .ex06_matching import check_decode, check_fitness, check_suboptimal_segment
 from .ex06c_registration import (
@@ -45,13 +57,15 @@ from .ex06c_registration import (
 __all__ = [
     "ExerciseNotSolved", "Verdict", "check_skew", "check_pixel_growth", "check_swath",
     "check_design_matrix", "check_rms", "check_blunder", "check_degree_choice",
+    "check_pec_class",
     "check_bilinear", "check_method_for_classes", "check_overshoot", "check_gain_offset",
     "check_truncation_levels", "check_filter_size", "check_fitness", "check_decode",
-    "check_suboptimal_segment", "check_datum_shift_pixels",
+    "check_suboptimal_segment", "check_datum_shift_pixels", "check_grid_vs_parameters",
     "check_helmert", "check_projective_matrix", "check_model_choice",
     "check_output_pixel_size", "check_grid_extent",
     "recognised_mistakes",
-    "check_displacement", "check_height_budget", "check_rpc_position",
+    "check_displacement", "check_height_budget", "check_rpc_position", "check_geoid_shift",
+    "check_bias_shift", "check_compensated_rms",
     "check_keypoint_position", "check_composed_tiepoint", "check_check_point_error",
     "Declaration", "Mistake", "declaration", "declarations",
 ]

@@ -1,4 +1,4 @@
-"""Checks of exercises 4b (chapter 4b, relief displacement and RPCs)."""
+"""Checks of exercises 4b (chapter 4b, relief displacement, RPCs and the geoid)."""
 
 import numpy as np
 
@@ -6,7 +6,8 @@ from .. import terrain
 from .._i18n import N_, _
 from .engine import Declaration, Mistake, _position_verdict, _two_numbers, _WrongForm, declare
 
-__all__ = ["check_displacement", "check_height_budget", "check_rpc_position"]
+__all__ = ["check_displacement", "check_height_budget", "check_rpc_position",
+           "check_geoid_shift"]
 
 DISPLACEMENT = Declaration(
     check="check_displacement", answer="displacement_m", inputs=("height_m", "view_zenith_deg"),
@@ -177,3 +178,74 @@ def check_rpc_position(position, rpc_mapping, lon, lat, height):
     task = RPC_POSITION.task(rpc_mapping=rpc_mapping, lon=lon, lat=lat, height=height)
     return _position_verdict(RPC_POSITION, value, task, 1e-3,
                              _("(col, row) is where the RPC puts the point."))
+
+
+def _geoid_derived(task):
+    angle = np.radians(task.view_zenith_deg)
+    return {"angle": angle, "metres": -task.geoid_undulation_m * np.tan(angle)}
+
+
+GEOID_SHIFT = Declaration(
+    check="check_geoid_shift", answer="shift_px",
+    inputs=("geoid_undulation_m", "view_zenith_deg", "pixel_m"),
+    derive=_geoid_derived,
+    right=lambda task: task.metres / task.pixel_m,
+    general=N_("The RPC was given H where it needs h = H + N: every height is off by -N, and a "
+               "height error Δh moves a point Δh·tan θ away from the nadir. Divide by the pixel "
+               "size for pixels."),
+    mistakes=(
+        Mistake(N_("Mind the sign: the DEM's H is h - N, so the height the RPC got is off by -N. "
+                   "With N > 0 the points are taken too low and move towards the nadir "
+                   "(negative)."),
+                lambda task: -task.right),
+        Mistake(N_("That is N·sin θ; a height error moves a point Δh·tan θ (the horizontal leg "
+                   "of a triangle whose vertical leg is Δh)."),
+                lambda task: -task.geoid_undulation_m * np.sin(task.angle) / task.pixel_m),
+        Mistake(N_("That is in metres on the ground; the task asks for pixels: divide by the "
+                   "pixel size."),
+                lambda task: task.metres),
+        Mistake(N_("That is N itself, without the view angle: a height error moves a point "
+                   "sideways by Δh·tan θ (at nadir it would not move at all)."),
+                lambda task: [-task.geoid_undulation_m / task.pixel_m,
+                              -task.geoid_undulation_m],
+                many=True),
+        Mistake(N_("np.tan takes radians: convert the angle with np.radians first."),
+                lambda task: float(-task.geoid_undulation_m * np.tan(task.view_zenith_deg)
+                                   / task.pixel_m)),
+    ),
+    rtol=5e-3, units=" px")
+
+
+@declare(GEOID_SHIFT)
+def check_geoid_shift(shift_px, geoid_undulation_m, view_zenith_deg, pixel_m):
+    """Forgetting the geoid: how far an orthoimage moves when N is not added to the DEM.
+
+    Parameters
+    ----------
+    shift_px : float
+        The student's answer: the displacement of every point in pixels, positive away
+        from the nadir, negative towards it.
+    geoid_undulation_m : float
+        The geoid undulation N at the scene (m): h = H + N.
+    view_zenith_deg : float
+        View zenith angle (degrees).
+    pixel_m : float
+        Pixel size on the ground (m).
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    ExerciseNotSolved
+        If ``shift_px`` is still ``...``.
+
+    Examples
+    --------
+    >>> check_geoid_shift(-1.0, 10.0, 45.0, 10.0)
+    Correct: `shift_px` = -1 px.
+    """
+    return GEOID_SHIFT.judge(shift_px, GEOID_SHIFT.task(
+        geoid_undulation_m=geoid_undulation_m, view_zenith_deg=view_zenith_deg,
+        pixel_m=pixel_m))
