@@ -181,7 +181,7 @@ def _kind_and_unit(crs):
 class Transformation(NamedTuple):
     """A coordinate operation PROJ knows between two CRSs, as rsgeo names it.
 
-    Attributes
+    Parameters
     ----------
     name : str
         The datum steps' names in PROJ's database, e.g. "SAD69 to SIRGAS 2000 (2)"
@@ -468,15 +468,12 @@ class DatumShift(tuple):
     """How far points move between two datums, and the transformation that moved them.
 
     A tuple ``(dx, dy, distance)``, so that ``dx, dy, distance = datum_shift(...)`` works, with
-    more attributes than items (as :func:`os.stat` 's result has).
+    more attributes than items (as ``os.stat_result`` has): ``dx``, ``dy`` and ``distance``
+    per point in the CRSs' units (metres for UTM), and ``transformation``, the operation PROJ
+    applied (at most points, when it needed several; None for no points or two equal CRSs).
 
     Attributes
     ----------
-    dx, dy, distance : ndarray
-        Per point, in the CRSs' units (metres for UTM).
-    transformation : Transformation or None
-        The operation PROJ applied (at most points, when it needed several); None for no
-        points or two equal CRSs.
     transformations : tuple of Transformation
         Every operation applied, most points first.
     used : ndarray of int
@@ -789,7 +786,7 @@ _EDGE_TOLERANCE = 1e-5
 class ShiftGrid(NamedTuple):
     """A horizontal shift grid (NTv2 converted to GeoTIFF), read by rsgeo.
 
-    Attributes
+    Parameters
     ----------
     name : str
         The file's name.
