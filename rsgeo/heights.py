@@ -6,10 +6,12 @@ ellipsoid. The two differ by the geoid undulation N:
 
     h = H + N
 
-N is between -106 m and +85 m on Earth and between about -30 m and +20 m in Brazil; at Olinda it
-is -5.5 m. IBGE's own geoid model for Brazil is MAPGEO2015 (about 0.2 m accuracy); it is not in
-PROJ's grid collection, so rsgeo ships the global EGM96 (1 m or so) cut to Brazil, from Debian's
-``proj-data`` (``rsgeo/data/README.md``), and uses it through PROJ.
+N is tens of metres: over the box rsgeo's grid covers (Brazil and its neighbours,
+:func:`geoid_coverage`) EGM96 goes from about -40 m to +50 m, and at Olinda it is -5.5 m.
+IBGE's own geoid model for Brazil is MAPGEO2015, fitted to Brazil's gravity and levelling data;
+it is not in PROJ's grid collection, so rsgeo ships the global EGM96 (the geoid SRTM's heights
+are given on) cut to that box, from Debian's ``proj-data`` (``rsgeo/data/README.md``), and
+uses it through PROJ.
 
 Examples
 --------

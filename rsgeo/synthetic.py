@@ -627,16 +627,13 @@ class RawSensor:
         ValueError
             If a line of sight leaves the DEM.
         """
-        from .terrain import dem_height
+        from .terrain import line_of_sight_on_dem
 
         iterations = as_integer(iterations, "iterations", low=1)
         col, row = np.broadcast_arrays(_finite_array(col, "col"), _finite_array(row, "row"))
         true = self._true_grid(col, row)          # the line of sight: once, whatever the height
-        h = np.zeros(col.size)
-        for _iteration in range(iterations):
-            x, y = self._on_sphere(true, h)
-            h = dem_height(dem, dem_transform, x, y)
-        x, y = self._on_sphere(true, h)
+        x, y, h = line_of_sight_on_dem(lambda h: self._on_sphere(true, h), (col.size,), dem,
+                                       dem_transform, iterations)
         return x.reshape(col.shape), y.reshape(col.shape), h.reshape(col.shape)
 
     def with_knowledge_errors(self, roll_deg=0.0, pitch_deg=0.0, yaw_deg=0.0,

@@ -87,7 +87,7 @@ from .tiepoints import measure_shifts
 __all__ = [
     "relief_displacement", "relief_displacement_photo", "height_error_budget", "occluded",
     "RPCModel", "RPC_TERMS", "simple_rpc_dict", "fit_rpc", "refine_rpc", "RefinedRPC",
-    "BIAS_KINDS", "dem_height", "orthorectify",
+    "BIAS_KINDS", "dem_height", "line_of_sight_on_dem", "orthorectify",
     "PushbroomSensor", "fit_rpc_to_sensor", "map_on_grid", "positional_error",
 ]
 
@@ -1265,6 +1265,55 @@ def _ortho_positions(dst_gt, first_row, width, lon, lat, dem_x, dem_y, dem, inve
         counts[i, _SEES_IMAGE] = seen
 
 
+def line_of_sight_on_dem(ground, shape, dem, dem_transform, iterations):
+    """Where lines of sight meet a DEM, by the fixed-point iteration h -> (x, y) -> h.
+
+    One idea for every sensor model of the course (:class:`PushbroomSensor`,
+    :class:`rsgeo.synthetic.RawSensor`): start on the datum (h = 0), find where each line of
+    sight is at that height, read the DEM there, repeat. Each step shrinks the error by the
+    terrain's slope times tan θ, so a few steps suffice on gentle terrain.
+
+    Parameters
+    ----------
+    ground : callable
+        ``ground(h) -> (x, y)``: where the lines of sight are at heights ``h`` (an array of
+        ``shape``), in the DEM's map coordinates.
+    shape : tuple of int
+        The shape of the lines of sight's array.
+    dem : 2-D array
+        Heights (m) on the sensor model's datum.
+    dem_transform : affine.Affine
+        The DEM's geotransform.
+    iterations : int
+        How many steps.
+
+    Returns
+    -------
+    x, y, h : ndarray
+        The ground points, of ``shape``.
+
+    Raises
+    ------
+    ValueError
+        If a line of sight leaves the DEM (:func:`dem_height`).
+
+    Examples
+    --------
+    >>> import affine
+    >>> dem = np.full((10, 10), 50.0)
+    >>> x, y, h = line_of_sight_on_dem(lambda h: (2.0 + 0.1 * h, 5.0 - 0 * h), (1,), dem,
+    ...                                affine.Affine(1, 0, 0, 0, -1, 10), 3)
+    >>> float(x[0]), float(h[0])                        # 50 m up, 0.1 m east per metre
+    (7.0, 50.0)
+    """
+    h = np.zeros(shape)
+    for _iteration in range(iterations):
+        x, y = ground(h)
+        h = dem_height(dem, dem_transform, x, y)
+    x, y = ground(h)
+    return x, y, h
+
+
 def dem_height(dem, dem_transform, x, y, dem_nodata=None):
     """DEM heights at map points, bilinear, exactly as GDAL's RPC transformer samples its DEM.
 
@@ -1767,12 +1816,9 @@ class PushbroomSensor:
         ValueError
             If a line of sight leaves the DEM.
         """
-        h = np.zeros(np.broadcast(np.asarray(col), np.asarray(row)).shape)
-        for _iteration in range(int(iterations)):
-            x, y = self.ground(col, row, h)
-            h = dem_height(dem, dem_transform, x, y)
-        x, y = self.ground(col, row, h)
-        return x, y, h
+        shape = np.broadcast(np.asarray(col), np.asarray(row)).shape
+        return line_of_sight_on_dem(lambda h: self.ground(col, row, h), shape, dem,
+                                    dem_transform, int(iterations))
 
     def simulate(self, shape, dem, dem_transform, ground, ground_transform):
         """The raw image this sensor records over a DEM, from an orthoimage of the ground.

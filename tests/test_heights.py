@@ -98,3 +98,9 @@ def test_to_ellipsoidal_adds_n():
 def test_refusals_say_what_is_needed(call, match):
     with pytest.raises(GridError, match=match):
         call()
+
+
+def test_the_module_docstring_states_the_grid_range():
+    """heights' docstring says EGM96 over the shipped box goes from about -40 m to +50 m."""
+    undulation = heights._grid("EGM96")[-1]
+    assert -42 < undulation.min() < -38 and 48 < undulation.max() < 52
