@@ -178,7 +178,7 @@ def _kind_and_unit(crs):
 
 # -- Datum transformations: PROJ (pyproj) with the grids rsgeo ships --------------------------
 
-class Transformation(NamedTuple):
+class Transformation(NamedTuple):  # numpydoc ignore=PR02
     """A coordinate operation PROJ knows between two CRSs, as rsgeo names it.
 
     Parameters
@@ -783,7 +783,7 @@ _ARCSECONDS_PER = {"arc-second": 1.0, "degree": 3600.0, "radian": 180 / np.pi * 
 _EDGE_TOLERANCE = 1e-5
 
 
-class ShiftGrid(NamedTuple):
+class ShiftGrid(NamedTuple):  # numpydoc ignore=PR02
     """A horizontal shift grid (NTv2 converted to GeoTIFF), read by rsgeo.
 
     Parameters
