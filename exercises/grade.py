@@ -1,33 +1,43 @@
-"""Grade a class's exercise notebooks with the course's own checks.
+"""Grade a class's exercise notebooks with the course's own checks, out of the students' reach.
 
     python exercises/grade.py SUBMISSIONS [--out grades.csv] [--html grades.html] [--jobs 2]
-                              [--cell-timeout 60] [--notebook-timeout 600]
+                              [--cell-timeout 60] [--notebook-timeout 600] [--memory-mb 3072]
 
 SUBMISSIONS holds one folder per student (with that student's ``.ipynb`` files, at any depth)
 or one ``.ipynb`` per student (the student is the file's name). Each notebook is matched to the
-course's exercise notebook (``exercises/*.ipynb``) by its file name, else by its content.
+course's exercise notebook (``exercises/*.ipynb``) by its content (its cells), else by its file
+name; a notebook saved under another exercise's name is graded as the exercise it holds and
+flagged in the ``note`` column ("saved as ex04_resampling.ipynb, graded as ex02b_datums").
 
-A *task* is a solution cell of the course's notebook (one with ``### BEGIN SOLUTION``) and the
-check cells that follow it (cells that call ``check_...``). For each submission the grader
+A *task* is a solution cell of the course's notebook (one with ``### BEGIN SOLUTION``), its
+answers (the names the student edition sets to ``...``) and the check cells that follow it
+(cells that call ``check_...``). For each submission the grader
 
-1. starts a fresh kernel (over IPC sockets, in an empty temporary folder) and captures the genuine
-   ``rsgeo.exercises`` checks before any student code runs;
+1. starts a fresh kernel (sandbox.py): in an empty temporary folder, with a memory limit
+   (``--memory-mb``), and inside bubblewrap (no network, a read-only system, no view of the
+   course's solutions or the other submissions) where ``bwrap`` is installed; without it, an
+   audit hook in the kernel refuses to read those folders or write in the course's repository,
+   and the ``note`` column says that the sandbox was not available;
 2. runs the student's code cells in order, each with a time limit (``--cell-timeout``) inside a
    time limit for the whole notebook (``--notebook-timeout``); an error does not stop the run, a
-   cell that runs too long is interrupted. The student's own check cells (those identical to the
-   course's) are skipped;
-3. runs the *course's* check source of each task, with the genuine checks, as soon as the
-   student's cells for that task have run (before the next cell the course has after the task's
-   checks). A student who deletes, edits or redefines a check cannot change the grade.
+   cell that runs too long is interrupted. The student's own check cells are skipped;
+3. after each task's cells, reads the task's answers out of the kernel as JSON (numbers, text,
+   small arrays), and judges them *in the grader's process* (judge.py): the course's check cell
+   runs there with the genuine checks and the course's own inputs (the course notebook run with
+   its worked solutions). Nothing a student's code does in its kernel reaches a verdict.
 
 Each task gets one verdict: ``Correct``, ``Not yet`` (with the check's message and hint),
-``not attempted`` (the answer is still ``...``), ``error: <exception>`` or ``timed out``. The
-grader writes a CSV (student, notebook, task, verdict, message) and an HTML summary (one table
-per notebook: students by tasks, coloured), never stops on a bad submission (a file that is not a
-notebook is one row with an ``error: ...`` verdict), and prints a progress bar on standard error.
+``not attempted`` (the answer is still ``...``), ``error: <exception>`` (the student's own cell's
+error, e.g. ``error: SyntaxError``, not what follows from it) or ``timed out``. A numeric answer
+is judged by one tolerance rule (judge.py): the check's, with a float32 read as the decimal it
+prints as, or the right answer rounded to 2 decimals in the task's unit (within 1 %).
 
-Security: the grader stops honest mistakes and casual tampering (a redefined check), not a student
-determined to attack the machine that grades; run untrusted submissions in a container.
+The grader writes a CSV (student, notebook, task, verdict, message, file, note), a row per task
+as soon as each notebook is graded (flushed; the file is rewritten sorted at the end), then an
+HTML summary (one table per notebook: students by tasks, coloured). ``file`` is the submitted
+file's path under SUBMISSIONS as the student named it (bytes that are not UTF-8 written as
+``\\xe9``). It never stops on a bad submission (a file that is not a notebook is one row with an
+``error: ...`` verdict), and prints a progress bar on standard error.
 """
 
 import argparse
@@ -36,7 +46,6 @@ import concurrent.futures
 import csv
 import difflib
 import html
-import json
 import re
 import secrets
 import shutil
@@ -52,37 +61,54 @@ from nbclient import NotebookClient
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(ROOT / "book" / "_ext"))
+import judge  # noqa: E402
+import sandbox  # noqa: E402
 from make_student_edition import BEGIN, strip_solutions  # noqa: E402
-
-from offline_book import IPCKernelManager  # noqa: E402
 
 COURSE = HERE
 VERDICTS = ("Correct", "Not yet", "not attempted", "error", "timed out")
 CHECK_CALL = re.compile(r"^\s*check_\w+\(", flags=re.M)
 EXERCISE_TITLE = re.compile(r":::\{exercise\}\s*(\S+)")
-FIELDS = ("student", "notebook", "task", "verdict", "message")
+FIELDS = ("student", "notebook", "task", "verdict", "message", "file", "note")
+CONTENT_MATCH = 0.3          # the share of a course notebook's cells a submission must share
+NO_SANDBOX = "sandbox: bwrap not installed (memory limit, temporary folder and audit hook only)"
+
+
+def printable(text):
+    """``text`` with what cannot be written as UTF-8 escaped readably.
+
+    A folder name from a zip made on another system is Latin-1 bytes, which Python on Linux
+    decodes with surrogate escapes (``os.fsdecode``); written as ``\\xe9`` it stays readable and
+    never stops a CSV or an HTML page.
+
+    >>> printable("Jos\\udce9_Silva")
+    'Jos\\\\xe9_Silva'
+    """
+    return str(text).encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
 
 
 # -- The course's tasks ------------------------------------------------------
 
 @dataclass
 class Task:
-    """One task of a course notebook: its solution cell and the check cells after it."""
+    """One task of a course notebook: its solution cell, its answers and its check cells."""
 
     name: str
     solution: int                      # index of the solution cell among the code cells
+    answers: list = field(default_factory=list)     # the names the student edition sets to ...
     checks: list = field(default_factory=list)      # indices of its check cells
     check_source: str = ""
 
 
 @dataclass
 class Course:
-    """A course exercise notebook: the keys its code cells are matched by, and its tasks."""
+    """A course exercise notebook: its code cells (with solutions), the keys its cells are
+    matched by (as students receive them), and its tasks."""
 
     path: Path
     keys: list
     tasks: list
+    cells: list = field(default_factory=list)
 
 
 def _normal(source):
@@ -102,6 +128,7 @@ def read_course(path):
     -------
     Course
         ``keys``: each code cell's source as a student receives it (solutions stripped);
+        ``cells``: the code cells' sources with solutions (what the judge runs);
         ``tasks``: one :class:`Task` per solution cell, named after the ``{exercise}`` directive
         before it ("1.2"), else "task N".
 
@@ -111,7 +138,7 @@ def read_course(path):
         If the notebook has no solution cell, or a task has no check cell after it.
     """
     notebook = nbformat.read(path, as_version=4)
-    keys, tasks, title = [], [], None
+    keys, cells, tasks, title = [], [], [], None
     for cell in notebook.cells:
         if cell.cell_type == "markdown":
             found = EXERCISE_TITLE.search(cell.source)
@@ -120,9 +147,12 @@ def read_course(path):
         if cell.cell_type != "code":
             continue
         index = len(keys)
+        cells.append(cell.source)
         if BEGIN in cell.source:
-            keys.append(_normal(strip_solutions(cell.source)))
-            tasks.append(Task(title or f"task {len(tasks) + 1}", index))
+            student = strip_solutions(cell.source)
+            keys.append(_normal(student))
+            tasks.append(Task(title or f"task {len(tasks) + 1}", index,
+                              judge.answer_names(student)))
             title = None
         else:
             keys.append(_normal(cell.source))
@@ -137,7 +167,9 @@ def read_course(path):
     for task in tasks:
         if not task.checks:
             raise ValueError(f"{path}: task {task.name} has no check cell after its solution")
-    return Course(Path(path), keys, tasks)
+        if not task.answers:
+            raise ValueError(f"{path}: task {task.name} sets no answer to ... for students")
+    return Course(Path(path), keys, tasks, cells)
 
 
 def course_notebooks(folder=COURSE):
@@ -146,27 +178,38 @@ def course_notebooks(folder=COURSE):
 
 
 def match_course(path, sources, courses):
-    """The course notebook a submission answers: by file name, else by the content of its cells.
+    """The course notebook a submission answers: by its content first, else by its file name.
 
-    Returns None when no course notebook shares enough cells with it.
+    Returns
+    -------
+    (Course or None, str)
+        The course notebook (None when neither content nor name matches one) and a note for the
+        grades when the file's name names another exercise ("saved as ex04_resampling.ipynb,
+        graded as ex02b_datums"), else "".
     """
-    stem = Path(path).stem.lower()
+    name = Path(path).name
+    stem = name.lower()
     named = [course for course in courses if stem.startswith(course.path.stem.lower())]
-    if named:
-        return max(named, key=lambda course: len(course.path.stem))
+    by_name = max(named, key=lambda course: len(course.path.stem)) if named else None
     scores = [(difflib.SequenceMatcher(None, course.keys, sources, autojunk=False).ratio(), i)
               for i, course in enumerate(courses)]
     score, best = max(scores, default=(0.0, None))
-    return courses[best] if score >= 0.3 else None
+    by_content = courses[best] if score >= CONTENT_MATCH else None
+    if by_content is None:
+        return by_name, ""
+    if by_name is not None and by_name is not by_content:
+        return by_content, (f"saved as {printable(name)}, graded as {by_content.path.stem}: "
+                            "its cells are that exercise's")
+    return by_content, ""
 
 
 def plan(course, sources):
     """What to run: the student's cells in order, with each task's check after its cells.
 
     Student cells are aligned with the course's code cells (``difflib`` on their sources): cells
-    equal to a course check cell are skipped. Each task's course check runs where the student's
-    copy of its (last) check cell is; if that was deleted or edited, before the first student
-    cell aligned with a course cell after it, or at the end.
+    equal to a course check cell are skipped. Each task is judged where the student's copy of
+    its (last) check cell is; if that was deleted or edited, before the first student cell
+    aligned with a course cell after it, or at the end.
 
     Returns
     -------
@@ -195,37 +238,6 @@ def plan(course, sources):
 
 # -- Running a submission ------------------------------------------------------
 
-PREAMBLE = '''
-def {name}():
-    import ast, json
-    import rsgeo.exercises as exercises
-    checks = {{name: getattr(exercises, name) for name in exercises.__all__}}
-    verdict_type, not_solved = exercises.Verdict, exercises.ExerciseNotSolved
-
-    def grade(source, namespace):
-        tree = ast.parse(source)
-        last = tree.body.pop() if tree.body and isinstance(tree.body[-1], ast.Expr) else None
-        scope = dict(namespace)
-        scope.update(checks)
-        try:
-            exec(compile(tree, "<course check>", "exec"), scope)
-            value = None if last is None else eval(
-                compile(ast.Expression(last.value), "<course check>", "eval"), scope)
-            if isinstance(value, verdict_type):
-                result = ["Correct" if value.ok else "Not yet", value.message,
-                          "" if value.ok else value.hint]
-            else:
-                result = ["error: the check gave no verdict", repr(value)[:200], ""]
-        except not_solved as error:
-            result = ["not attempted", str(error), ""]
-        except Exception as error:
-            result = [f"error: {{type(error).__name__}}", str(error)[:500], ""]
-        print("{token}" + json.dumps(result))
-    return grade
-{name} = {name}()
-'''
-
-
 @dataclass
 class Row:
     """One line of the grades: a task's verdict for one student's notebook."""
@@ -235,23 +247,77 @@ class Row:
     task: str
     verdict: str
     message: str = ""
+    file: str = ""              # the submitted file, as the student named it (escaped)
+    note: str = ""              # a misfiled notebook, a missing sandbox
+
+
+@dataclass
+class Fence:
+    """What the student's kernel may not see or change, and its memory (sandbox.py)."""
+
+    memory: int = sandbox.DEFAULT_MEMORY
+    hidden: list = field(default_factory=list)
+    protected: list = field(default_factory=list)
 
 
 def _error_text(reply_content):
     return f"{reply_content.get('ename', 'Error')}: {reply_content.get('evalue', '')}"[:500]
 
 
-async def _run(notebook, course, cell_timeout, notebook_timeout, student, name):
-    token = "RSGEO-GRADE-" + secrets.token_hex(8) + "="
-    grader = "_rsgeo_grader_" + secrets.token_hex(6)
+def _task_row(task, found, failed, scope):
+    """[verdict, message] for one task from the answers read out of the kernel.
+
+    ``found``: name -> encoded answer (None when they could not be read); ``failed``: the first
+    error of the task's own cells (a reply's content), reported instead of what follows from it.
+    """
+    if failed and failed.get("ename") == "TimedOut":
+        return ["timed out", failed.get("evalue", "")]
+    if found is None:
+        if failed:
+            return [f"error: {failed.get('ename')}", _error_text(failed)]
+        return ["error: the answers could not be read", "the kernel printed none"]
+    answers, missing = {}, []
+    for name in task.answers:
+        try:
+            answers[name] = judge.decode(found.get(name, {"t": "missing"}))
+        except KeyError:
+            missing.append(name)
+        except (ValueError, TypeError, IndexError):      # a malformed (tampered) report
+            return ["error: the answers could not be read", f"`{name}` came back malformed"]
+    if missing:
+        if failed:
+            return [f"error: {failed.get('ename')}", _error_text(failed)]
+        return ["error: NameError", f"`{missing[0]}` is not defined: the cell that sets it is "
+                "missing or was not run"]
+    if scope is None:
+        return ["error: the course notebook did not run", "see the grader's note"]
+    verdict, message, hint = judge.judge(task, scope, answers)
+    if failed and verdict in ("not attempted", "Not yet") or (
+            failed and verdict.startswith("error")):
+        if verdict == "Not yet":
+            return [verdict, f"{message} (your cell raised {_error_text(failed)})"
+                    + (f" Hint: {hint}" if hint else "")]
+        return [f"error: {failed.get('ename')}", _error_text(failed)]
+    return [verdict, message + (f" Hint: {hint}" if hint else "")]
+
+
+async def _run(notebook, course, cell_timeout, notebook_timeout, student, name, fence):
+    token = "RSGEO-ANSWERS-" + secrets.token_hex(8) + "="
+    extractor = "_rsgeo_answers_" + secrets.token_hex(6)
     sources = [_normal(cell.source) for cell in notebook.cells if cell.cell_type == "code"]
     code_cells = [cell for cell in notebook.cells if cell.cell_type == "code"]
     steps = plan(course, sources)
+    try:
+        scopes, course_failure = judge.course_scopes(course), None
+    except Exception as error:                             # noqa: BLE001 - the course is broken
+        scopes, course_failure = {}, f"{type(error).__name__}: {str(error)[:300]}"
     folder = tempfile.mkdtemp(prefix="rsgeo-grade-")
+    manager = sandbox.SandboxedKernelManager(
+        kernel_name="python3", memory=fence.memory, hidden=fence.hidden,
+        protected=fence.protected, work=folder)
     runner = nbformat.v4.new_notebook()
-    client = NotebookClient(runner, km=IPCKernelManager(kernel_name="python3"),
-                            kernel_name="python3", timeout=cell_timeout, allow_errors=True,
-                            interrupt_on_timeout=True, error_on_timeout={
+    client = NotebookClient(runner, km=manager, kernel_name="python3", timeout=cell_timeout,
+                            allow_errors=True, interrupt_on_timeout=True, error_on_timeout={
                                 "ename": "TimedOut", "evalue": "the cell ran too long"},
                             resources={"metadata": {"path": folder}})
     errors = []
@@ -272,9 +338,9 @@ async def _run(notebook, course, cell_timeout, notebook_timeout, student, name):
                 await client.async_execute_cell(cell, len(runner.cells) - 1)
                 stdout = "".join(output.get("text", "") for output in cell.outputs
                                  if output.get("name") == "stdout")
+                cell.outputs = []                    # a huge output is not kept
                 return (errors[0] if errors else None), stdout
 
-            await execute(PREAMBLE.format(name=grader, token=token))
             task = course.tasks[0]             # the task whose cells are running
             for kind, value in steps:
                 if kind == "cell":
@@ -282,16 +348,17 @@ async def _run(notebook, course, cell_timeout, notebook_timeout, student, name):
                     if failed and task is not None:
                         cell_errors.setdefault(task.name, failed)
                     continue
-                failed = cell_errors.get(value.name, {})
-                if failed.get("ename") == "TimedOut":
-                    rows.append(Row(student, name, value.name, "timed out", failed["evalue"]))
-                else:
-                    result = await execute(f"{grader}({value.check_source!r}, globals())")
-                    row = _verdict_row(result, token, student, name, value.name)
-                    if failed and row.verdict == "not attempted":   # the answer's cell raised
-                        row.verdict, row.message = f"error: {failed.get('ename')}", _error_text(
-                            failed)
-                    rows.append(row)
+                failed = cell_errors.get(value.name)
+                found = None
+                if not (failed and failed.get("ename") == "TimedOut"):
+                    trouble, stdout = await execute(judge.EXTRACT.format(
+                        function=extractor, names=value.answers, token=token,
+                        max_items=judge.MAX_ITEMS))
+                    found = None if trouble else judge.parse_answers(stdout, token)
+                verdict, message = _task_row(value, found, failed, scopes.get(value.name))
+                if course_failure:
+                    message = f"{message} (the course notebook failed: {course_failure})"
+                rows.append(Row(student, name, value.name, verdict, message))
                 following = course.tasks.index(value) + 1
                 task = course.tasks[following] if following < len(course.tasks) else None
     except Exception as error:                             # noqa: BLE001 - a dead kernel, etc.
@@ -305,20 +372,8 @@ async def _run(notebook, course, cell_timeout, notebook_timeout, student, name):
     return rows
 
 
-def _verdict_row(result, token, student, name, task):
-    failed, stdout = result
-    if failed:
-        if failed.get("ename") == "TimedOut":
-            return Row(student, name, task, "timed out", failed.get("evalue", ""))
-        return Row(student, name, task, "error: the check did not run", _error_text(failed))
-    lines = [line for line in stdout.splitlines() if line.startswith(token)]
-    if not lines:
-        return Row(student, name, task, "error: the check gave no verdict", "")
-    verdict, message, hint = json.loads(lines[-1][len(token):])
-    return Row(student, name, task, verdict, message + (f" Hint: {hint}" if hint else ""))
-
-
-def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600):
+def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600, fence=None,
+                   shown_as=None):
     """Grade one submitted notebook; never raises for a bad submission.
 
     Parameters
@@ -331,6 +386,10 @@ def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600
         The course's exercise notebooks (:func:`course_notebooks`).
     cell_timeout, notebook_timeout : float
         Seconds one cell, and the whole notebook, may run.
+    fence : Fence, optional
+        The kernel's memory and the folders it may not see or change.
+    shown_as : str, optional
+        The ``file`` column (default: the file's name).
 
     Returns
     -------
@@ -346,23 +405,30 @@ def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600
     if not (cell_timeout > 0 and notebook_timeout > 0):
         raise ValueError(f"time limits must be positive seconds, got cell {cell_timeout}, "
                          f"notebook {notebook_timeout}")
-    name = Path(path).name
+    fence = fence or Fence()
+    name = printable(Path(path).name)
+    shown_as = printable(shown_as or Path(path).name)
+    note = "" if sandbox.bwrap_path() else NO_SANDBOX
     try:
         notebook = nbformat.read(path, as_version=4)
         sources = [_normal(cell.source) for cell in notebook.cells if cell.cell_type == "code"]
     except Exception as error:                             # noqa: BLE001 - any unreadable file
         return [Row(student, name, "", "error: not a notebook",
-                    f"{type(error).__name__}: {str(error)[:300]}")]
-    course = match_course(path, sources, courses)
+                    f"{type(error).__name__}: {printable(str(error))[:300]}", shown_as)]
+    course, misfiled = match_course(path, sources, courses)
     if course is None:
         return [Row(student, name, "", "error: not a course exercise notebook",
-                    "its cells match none of the course's exercise notebooks")]
+                    "its cells match none of the course's exercise notebooks", shown_as)]
     name = course.path.name
     try:
-        return asyncio.run(_run(notebook, course, cell_timeout, notebook_timeout, student, name))
+        rows = asyncio.run(_run(notebook, course, cell_timeout, notebook_timeout, student, name,
+                                fence))
     except Exception as error:                             # noqa: BLE001 - never stop the class
-        return [Row(student, name, task.name, f"error: {type(error).__name__}", str(error)[:500])
+        rows = [Row(student, name, task.name, f"error: {type(error).__name__}", str(error)[:500])
                 for task in course.tasks]
+    for row in rows:
+        row.file, row.note = shown_as, "; ".join(part for part in (misfiled, note) if part)
+    return rows
 
 
 def submissions(folder):
@@ -370,7 +436,8 @@ def submissions(folder):
 
     A sub-folder is a student (all its ``.ipynb`` files, at any depth, checkpoints excluded;
     an empty one gives a "no notebook" row); a file at the top is a student named after its
-    stem. Hidden files are skipped.
+    stem. Hidden files are skipped. Names are kept as the file system gives them (a Latin-1
+    name carries surrogate escapes; :func:`printable` writes it).
 
     Raises
     ------
@@ -395,11 +462,12 @@ def submissions(folder):
 
 
 def _grade_one(job):
-    student, path, cell_timeout, notebook_timeout, course_folder = job
+    student, path, shown_as, cell_timeout, notebook_timeout, courses, fence = job
     if path is None:
-        return [Row(student, "", "", "error: no notebook", "the folder holds no .ipynb file")]
-    return grade_notebook(path, student, course_notebooks(course_folder), cell_timeout,
-                          notebook_timeout)
+        return [Row(student, "", "", "error: no notebook", "the folder holds no .ipynb file",
+                    shown_as)]
+    return grade_notebook(path, student, courses, cell_timeout, notebook_timeout, fence,
+                          shown_as)
 
 
 def progress(done, total, label, stream=sys.stderr, width=30):
@@ -412,7 +480,7 @@ def progress(done, total, label, stream=sys.stderr, width=30):
 
 
 def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=COURSE,
-          show_progress=True):
+          show_progress=True, on_rows=None, memory=sandbox.DEFAULT_MEMORY, outputs=()):
     """Grade every submission under ``folder``.
 
     Parameters
@@ -424,9 +492,16 @@ def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=C
     cell_timeout, notebook_timeout : float
         Seconds one cell, and one whole notebook, may run.
     course_folder : path-like
-        The course's exercise notebooks, with solutions (default: this folder).
+        The course's exercise notebooks, with solutions (default: this folder). They are read
+        once, before any submission runs.
     show_progress : bool
         Draw a progress bar on standard error.
+    on_rows : callable, optional
+        Called with each notebook's rows as soon as it is graded (the CSV written row by row).
+    memory : int
+        Bytes of memory (address space) each student kernel may take.
+    outputs : iterable of path-like
+        The grader's output files: their folders are hidden from the kernels.
 
     Returns
     -------
@@ -440,9 +515,17 @@ def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=C
     """
     if int(jobs) != jobs or jobs < 1:
         raise ValueError(f"jobs must be a positive integer, got {jobs!r}")
-    if not course_notebooks(course_folder):
+    courses = course_notebooks(course_folder)
+    if not courses:
         raise ValueError(f"{course_folder} holds no course exercise notebook")
-    work = [(student, path, cell_timeout, notebook_timeout, str(course_folder))
+    hidden = [str(Path(course_folder).resolve()), str(Path(folder).resolve()), str(HERE)]
+    hidden += [str(Path(out).resolve().parent) for out in outputs
+               if Path(out).resolve().parent != ROOT]
+    fence = Fence(int(memory), sorted(set(hidden)), [str(ROOT)])
+    base = Path(folder)
+    work = [(printable(student), path,
+             printable(path.relative_to(base)) if path else printable(student),
+             cell_timeout, notebook_timeout, courses, fence)
             for student, path in submissions(folder)]
     rows, total = [], len(work)
     if show_progress:
@@ -450,28 +533,54 @@ def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=C
     with concurrent.futures.ProcessPoolExecutor(max_workers=int(jobs)) as pool:
         futures = {pool.submit(_grade_one, job): job for job in work}
         for done, future in enumerate(concurrent.futures.as_completed(futures), start=1):
-            student, path = futures[future][:2]
+            student, path, shown_as = futures[future][:3]
             try:
-                rows += future.result()
+                these = future.result()
             except Exception as error:                     # noqa: BLE001 - a crashed worker
-                rows.append(Row(student, Path(path).name if path else "", "",
-                                f"error: {type(error).__name__}", str(error)[:500]))
+                these = [Row(student, printable(Path(path).name) if path else "", "",
+                             f"error: {type(error).__name__}", str(error)[:500], shown_as)]
+            rows += these
+            if on_rows is not None:
+                on_rows(these)
             if show_progress:
-                progress(done, total, f"{student}/{Path(path).name if path else ''}")
-    return sorted(rows, key=lambda row: (row.student, row.notebook))     # tasks stay in order
+                progress(done, total, shown_as)
+    return sorted(rows, key=lambda row: (row.student, row.file, row.notebook))  # tasks in order
+
+
+class CsvRows:
+    """The grades' CSV, written as the rows come (each notebook's flushed at once)."""
+
+    def __init__(self, path):
+        Path(path).parent.mkdir(parents=True, exist_ok=True)
+        self.file = open(path, "w", newline="", encoding="utf-8")     # noqa: SIM115
+        self.writer = csv.writer(self.file)
+        self.writer.writerow(FIELDS)
+        self.file.flush()
+
+    def __call__(self, rows):
+        for row in rows:
+            self.writer.writerow([printable(getattr(row, name)) for name in FIELDS])
+        self.file.flush()
+
+    def close(self):
+        self.file.close()
 
 
 def write_csv(rows, path):
-    """Write the grades as CSV with the columns student, notebook, task, verdict, message."""
-    with open(path, "w", newline="", encoding="utf-8") as file:
-        writer = csv.writer(file)
-        writer.writerow(FIELDS)
-        for row in rows:
-            writer.writerow([getattr(row, name) for name in FIELDS])
+    """Write the grades as CSV (the columns of :data:`FIELDS`), whatever the names contain."""
+    writer = CsvRows(path)
+    try:
+        writer(rows)
+    finally:
+        writer.close()
 
 
 COLOURS = {"Correct": "#c9f0d1", "Not yet": "#ffe3b3", "not attempted": "#e6e6e6",
            "timed out": "#f5c6c6", "error": "#f5c6c6"}
+
+
+def _text(value):
+    return html.escape(printable(value))
 
 
 def write_html(rows, path):
@@ -480,33 +589,38 @@ def write_html(rows, path):
              "body{font-family:sans-serif}td,th{border:1px solid #999;padding:3px 8px}"
              "table{border-collapse:collapse;margin-bottom:2em}</style></head><body>",
              "<h1>Grades</h1><p>Hover a cell for the check's message.</p>"]
+    notes = sorted({row.note for row in rows if row.note})
+    if notes:
+        parts.append("<ul>" + "".join(f"<li>{_text(note)}</li>" for note in notes) + "</ul>")
     problems = [row for row in rows if not row.task]
     if problems:
         parts.append("<h2>Submissions that could not be graded</h2><table><tr><th>student</th>"
                      "<th>file</th><th>verdict</th><th>message</th></tr>")
-        parts += [f"<tr><td>{html.escape(row.student)}</td><td>{html.escape(row.notebook)}</td>"
-                  f"<td style='background:{COLOURS['error']}'>{html.escape(row.verdict)}</td>"
-                  f"<td>{html.escape(row.message)}</td></tr>" for row in problems]
+        parts += [f"<tr><td>{_text(row.student)}</td><td>{_text(row.file or row.notebook)}</td>"
+                  f"<td style='background:{COLOURS['error']}'>{_text(row.verdict)}</td>"
+                  f"<td>{_text(row.message)}</td></tr>" for row in problems]
         parts.append("</table>")
     graded = [row for row in rows if row.task]
     for notebook in sorted({row.notebook for row in graded}):
         these = [row for row in graded if row.notebook == notebook]
         tasks = list(dict.fromkeys(row.task for row in these))
-        parts.append(f"<h2>{html.escape(notebook or '(no notebook)')}</h2><table><tr>"
-                     "<th>student</th>" + "".join(f"<th>{html.escape(task or '-')}</th>"
-                                                  for task in tasks) + "<th>correct</th></tr>")
-        for student in sorted({row.student for row in these}):
-            cells = {row.task: row for row in these if row.student == student}
+        parts.append(f"<h2>{_text(notebook or '(no notebook)')}</h2><table><tr>"
+                     "<th>student</th><th>file</th>" + "".join(
+                         f"<th>{_text(task or '-')}</th>" for task in tasks)
+                     + "<th>correct</th></tr>")
+        for student, shown_as in sorted({(row.student, row.file) for row in these}):
+            cells = {row.task: row for row in these
+                     if row.student == student and row.file == shown_as}
             correct = sum(row.verdict == "Correct" for row in cells.values())
-            parts.append(f"<tr><td>{html.escape(student)}</td>")
+            parts.append(f"<tr><td>{_text(student)}</td><td>{_text(shown_as)}</td>")
             for task in tasks:
                 row = cells.get(task)
                 if row is None:
                     parts.append("<td></td>")
                     continue
                 colour = COLOURS.get(row.verdict.split(":")[0], "#ffffff")
-                parts.append(f"<td style='background:{colour}' title='{html.escape(row.message)}'>"
-                             f"{html.escape(row.verdict)}</td>")
+                parts.append(f"<td style='background:{colour}' title='{_text(row.message)}'>"
+                             f"{_text(row.verdict)}</td>")
             parts.append(f"<td>{correct}/{len(tasks)}</td></tr>")
         parts.append("</table>")
     parts.append("</body></html>")
@@ -523,21 +637,31 @@ def main(argv=None):
     parser.add_argument("--cell-timeout", type=float, default=60, help="seconds per cell (60)")
     parser.add_argument("--notebook-timeout", type=float, default=600,
                         help="seconds per notebook (600)")
+    parser.add_argument("--memory-mb", type=int, default=sandbox.DEFAULT_MEMORY // 2 ** 20,
+                        help="memory (address space) per student kernel, MiB (3072)")
     parser.add_argument("--course", default=str(COURSE),
                         help="the course's exercise notebooks, with solutions (this folder)")
     options = parser.parse_args(argv)
+    summary = options.html or str(Path(options.out).with_suffix(".html"))
+    if options.memory_mb < 256:
+        parser.error(f"--memory-mb must be at least 256, got {options.memory_mb}")
+    streamed = CsvRows(options.out)
     try:
         rows = grade(options.submissions, options.jobs, options.cell_timeout,
-                     options.notebook_timeout, options.course)
+                     options.notebook_timeout, options.course, on_rows=streamed,
+                     memory=options.memory_mb * 2 ** 20, outputs=(options.out, summary))
     except ValueError as error:
         parser.error(str(error))
-    write_csv(rows, options.out)
-    summary = options.html or str(Path(options.out).with_suffix(".html"))
+    finally:
+        streamed.close()
+    write_csv(rows, options.out)              # from the grader's memory, sorted, last
     write_html(rows, summary)
     counts = {verdict: sum(row.verdict.startswith(verdict) for row in rows)
               for verdict in VERDICTS}
     print(f"{len(rows)} verdicts ({', '.join(f'{n} {v}' for v, n in counts.items())}) "
-          f"in {options.out} and {summary}")
+          f"in {printable(options.out)} and {printable(summary)}")
+    if not sandbox.bwrap_path():
+        print(NO_SANDBOX)
     return 0
 
 

@@ -114,7 +114,10 @@ def check_page(browser, base, path, screenshot=None, lang=None):
         except Exception:  # noqa: BLE001 - a timeout is the finding
             problems.append(f"{saved_views} saved widget(s) did not render")
     if screenshot is not None:
-        page.screenshot(path=str(screenshot), full_page=True)
+        # the whole page, unless it is longer than Chromium renders in one image (16,384 px; the
+        # API reference is far longer, and its full-page capture times out): then its first screen
+        height = page.evaluate("document.documentElement.scrollHeight")
+        page.screenshot(path=str(screenshot), full_page=height <= 16384)
     page.close()
     return problems
 

@@ -1,177 +1,173 @@
-"""The grader (exercises/grade.py) on planted submissions made from the course's own notebook:
-each kind of submission an instructor meets gets the verdict it deserves, and none stops \
-the run."""
+"""The grader (exercises/grade.py, judge.py, sandbox.py) on a synthetic class (issue 29): each
+kind of submission an instructor meets gets the verdict it deserves, no cheat changes a verdict,
+and nothing, whatever a file is named, loses the class's rows."""
 
 import csv
+import os
 import subprocess
 import sys
+from types import SimpleNamespace
 
 import nbformat
+import numpy as np
 import pytest
+from grade_class_fixtures import (
+    EXERCISE,
+    EXPECTED,
+    LATIN1_STUDENT,
+    NOT_A_NOTEBOOK,
+    PLANTED,
+    TASKS,
+    plant,
+    slice_course,
+)
 
 from notebook_runner import ROOT
 
 sys.path.insert(0, str(ROOT / "exercises"))
 import grade  # noqa: E402
-from make_student_edition import BEGIN, strip_solutions  # noqa: E402
+import judge  # noqa: E402
+import sandbox  # noqa: E402
 
-EXERCISE = ROOT / "exercises" / "ex01_distortions.ipynb"     # the quickest to run
-TASKS = ["1.1", "1.2", "1.3"]
-
-
-def _solution_cells(notebook):
-    return [cell for cell in notebook.cells if cell.cell_type == "code" and BEGIN in cell.source]
-
-
-def _check_cells(notebook):
-    return [cell for cell in notebook.cells
-            if cell.cell_type == "code" and grade.CHECK_CALL.search(cell.source)]
-
-
-def _write(notebook, path):
-    path.parent.mkdir(parents=True, exist_ok=True)
-    nbformat.write(notebook, path)
-
-
-def plant(folder):
-    """One submission of each kind, from the course's notebook; returns the folder."""
-    def course():
-        return nbformat.read(EXERCISE, as_version=4)
-
-    _write(course(), folder / "right" / EXERCISE.name)                 # the worked solutions
-
-    wrong = course()                                                   # in metres, then None
-    first, second, third = _solution_cells(wrong)
-    first.source += "\nskew_km = 1000 * skew_km"
-    second.source = "growth_percent = None"
-    _write(wrong, folder / "wrong" / EXERCISE.name)
-
-    untouched = course()                                               # the student edition
-    for cell in _solution_cells(untouched):
-        cell.source = strip_solutions(cell.source)
-    _write(untouched, folder / "untouched" / "ex01_distortions (1).ipynb")
-
-    looping = course()                                                 # 1.2 never ends
-    _solution_cells(looping)[1].source += "\nwhile True:\n    pass"
-    _write(looping, folder / "looping" / EXERCISE.name)
-
-    raising = course()                                                 # fails before the imports
-    first_code = next(cell for cell in raising.cells
-                      if cell.cell_type == "code" and "from rsgeo" in cell.source)
-    first_code.source = "raise RuntimeError('broken at the top')\n" + first_code.source
-    _write(raising, folder / "raising" / EXERCISE.name)
-
-    deleted = course()                                                 # 1.1 wrong, its check gone
-    _solution_cells(deleted)[0].source += "\nskew_km = -skew_km"
-    deleted.cells = [cell for cell in deleted.cells if cell is not _check_cells(deleted)[0]]
-    _write(deleted, folder / "deleted" / EXERCISE.name)
-
-    cheat = course()                                                   # every check "Correct"
-    for cell in _solution_cells(cheat):
-        cell.source += "\nskew_km = growth_percent = swath_km = 1.0"
-    imports = next(index for index, cell in enumerate(cheat.cells) if "from rsgeo" in cell.source)
-    cheat.cells.insert(imports + 1, nbformat.v4.new_code_cell(
-        "import rsgeo.exercises\n"
-        "def always(*args, **kwargs):\n"
-        "    return rsgeo.exercises.Verdict(True, 'Correct')\n"
-        "check_skew = check_pixel_growth = check_swath = always\n"
-        "rsgeo.exercises.check_skew = rsgeo.exercises.check_swath = always"))
-    _write(cheat, folder / "cheat" / EXERCISE.name)
-
-    (folder / "text").mkdir()                                          # not a notebook
-    (folder / "text" / EXERCISE.name).write_text("my answers: 7 km, 2 %, 2330 km\n")
-    (folder / "photo.jpg").write_bytes(b"\xff\xd8\xff\xe0 not a notebook either")
-    _write(course(), folder / "single.ipynb")                          # one .ipynb, no folder
-    return folder
+from rsgeo.exercises import engine  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def graded(tmp_path_factory):
     folder = plant(tmp_path_factory.mktemp("submissions"))
-    out = folder.parent / "grades.csv"
+    course = slice_course(tmp_path_factory.mktemp("course"))
+    out = folder.parent / "grades" / "grades.csv"
     run = subprocess.run([sys.executable, str(ROOT / "exercises" / "grade.py"), str(folder),
-                          "--out", str(out), "--jobs", "2", "--cell-timeout", "8"],
+                          "--out", str(out), "--jobs", "2", "--cell-timeout", "4",
+                          "--memory-mb", "3072", "--course", str(course)],
                          capture_output=True, text=True, timeout=600)
+    planted = [path for path in PLANTED if path.exists()]
+    for path in planted:                                 # never leave a planted file behind
+        path.unlink()
     assert run.returncode == 0, run.stderr[-3000:]
     with open(out, newline="", encoding="utf-8") as file:
         rows = list(csv.DictReader(file))
     verdicts = {}
     for row in rows:
-        verdicts.setdefault(row["student"], {})[row["task"]] = (row["verdict"], row["message"])
-    return verdicts, run, out
+        verdicts.setdefault(row["student"], {})[row["task"]] = row
+    return SimpleNamespace(verdicts=verdicts, rows=rows, run=run, out=out, planted=planted)
 
 
-def test_the_csv_has_the_columns_the_issue_names(graded):
-    verdicts, run, out = graded
-    assert out.read_text().splitlines()[0] == "student,notebook,task,verdict,message"
-    assert out.with_suffix(".html").exists()
+def test_every_row_of_the_class_is_the_verdict_it_deserves(graded):
+    got = {student: [graded.verdicts.get(student, {}).get(task, {}).get("verdict", "(no row)")
+                     for task in TASKS] for student in EXPECTED}
+    assert got == EXPECTED
+    for student, verdict in NOT_A_NOTEBOOK.items():
+        assert graded.verdicts[student][""]["verdict"] == verdict
+    assert len(graded.rows) == len(TASKS) * len(EXPECTED) + len(NOT_A_NOTEBOOK)
 
 
-@pytest.mark.parametrize("student", ["right", "single"])
-def test_right_answers_are_correct(graded, student):
-    verdicts = graded[0][student]
-    assert [verdicts[task][0] for task in TASKS] == ["Correct"] * 3
+def test_the_csv_has_the_file_and_a_note_and_the_html_is_written(graded):
+    assert graded.out.read_text().splitlines()[0] == ",".join(grade.FIELDS)
+    page = graded.out.with_suffix(".html").read_text(encoding="utf-8")
+    assert "Jos\\xe9_Silva" in page and page.count("<table>") == 2
 
 
-def test_wrong_answers_get_not_yet_with_the_hint(graded):
-    verdicts = graded[0]["wrong"]
-    assert verdicts["1.1"][0] == "Not yet" and "metres" in verdicts["1.1"][1]
-    assert verdicts["1.2"][0] == "Not yet" and "None" in verdicts["1.2"][1]
-    assert verdicts["1.3"][0] == "Correct"
+def test_a_latin1_folder_keeps_its_name_escaped(graded):
+    rows = graded.verdicts["Jos\\xe9_Silva"]
+    assert rows["2b.1"]["file"] == "Jos\\xe9_Silva/ex02b_datums.ipynb"
 
 
-def test_the_student_edition_untouched_is_not_attempted(graded):
-    verdicts = graded[0]["untouched"]
-    assert [verdicts[task][0] for task in TASKS] == ["not attempted"] * 3
+def test_a_misfiled_notebook_is_graded_as_its_content_and_flagged(graded):
+    row = graded.verdicts["misfiled"]["2b.1"]
+    assert row["notebook"] == "ex02b_datums.ipynb"
+    assert "saved as ex04_resampling.ipynb, graded as ex02b_datums" in row["note"]
+    renamed = graded.verdicts["renamed"]["2b.1"]
+    assert renamed["file"] == "renamed/my homework (final).ipynb"
+    assert "saved as" not in renamed["note"]
 
 
-def test_an_infinite_loop_times_out_and_the_rest_is_graded(graded):
-    verdicts = graded[0]["looping"]
-    assert [verdicts[task][0] for task in TASKS] == ["Correct", "timed out", "Correct"]
+def test_a_cells_own_error_is_reported_and_the_students_variable_named(graded):
+    assert "SyntaxError" in graded.verdicts["syntax_error"]["2b.1"]["message"]
+    assert "`hrc_shift_px`" in graded.verdicts["wrong"]["2b.2"]["message"]
+    assert "metres" in graded.verdicts["wrong"]["2b.1"]["message"]
 
 
-def test_a_notebook_that_raises_at_the_top_gets_errors(graded):
-    verdicts = graded[0]["raising"]
-    assert verdicts["1.1"] == ("error: RuntimeError", "RuntimeError: broken at the top")
-    assert all(verdicts[task][0] == "error: NameError" for task in TASKS[1:]), verdicts
-
-
-def test_a_deleted_check_still_runs_from_the_course(graded):
-    verdicts = graded[0]["deleted"]
-    assert verdicts["1.1"][0] == "Not yet" and "positive" in verdicts["1.1"][1]
-    assert [verdicts[task][0] for task in TASKS[1:]] == ["Correct"] * 2
-
-
-def test_a_redefined_check_does_not_change_the_grade(graded):
-    verdicts = graded[0]["cheat"]
-    assert [verdicts[task][0] for task in TASKS] == ["Not yet"] * 3
-
-
-def test_files_that_are_not_notebooks_are_one_error_row_each(graded):
-    verdicts = graded[0]
-    assert verdicts["text"] == {"": verdicts["text"][""]}
-    assert verdicts["text"][""][0] == "error: not a notebook"
-    assert verdicts["photo"][""][0] == "error: not a notebook"
+def test_no_submission_wrote_outside_its_folder(graded):
+    assert graded.planted == []
+    if sandbox.bwrap_path() is None:
+        assert "bwrap not installed" in graded.verdicts["right"]["2b.1"]["note"]
 
 
 def test_progress_goes_to_standard_error(graded):
-    run = graded[1]
-    assert "[" + "#" * 30 + "] 10/10" in run.stderr
-    assert "verdicts" in run.stdout
+    total = len(EXPECTED) + len(NOT_A_NOTEBOOK)
+    assert f"[{'#' * 30}] {total}/{total}" in graded.run.stderr
+    assert "verdicts" in graded.run.stdout
 
 
-def test_the_html_summary_colours_each_verdict(graded):
-    page = graded[2].with_suffix(".html").read_text()
-    assert page.count("<table>") == 2                       # ex01 and the not-a-notebook rows
-    for colour in (grade.COLOURS["Correct"], grade.COLOURS["Not yet"],
-                   grade.COLOURS["not attempted"], grade.COLOURS["timed out"]):
-        assert colour in page
+# -- Pieces, without a kernel ---------------------------------------------------------------
+
+def test_names_that_are_not_utf8_are_written(tmp_path):
+    student = os.fsdecode(LATIN1_STUDENT)
+    out = tmp_path / "grades.csv"
+    grade.write_csv([grade.Row(student, "x.ipynb", "1", "Correct", "ok", student + "/x")], out)
+    grade.write_html([grade.Row(student, "x.ipynb", "1", "Correct", "ok", student)],
+                     tmp_path / "grades.html")
+    assert "Jos\\xe9_Silva,x.ipynb" in out.read_text(encoding="utf-8")
 
 
-def test_a_task_is_a_solution_and_its_checks():
+def _task(check_source, answers):
+    return SimpleNamespace(check_source=check_source, answers=answers)
+
+
+def test_one_tolerance_rule_accepts_float32_and_two_decimals():
+    window = np.full((2, 2), 28.6)
+    scope = {"window": window, "dx": 0.3, "dy": 0.6}
+    bilinear = _task("check_bilinear(value, window, dx, dy)", ["value"])   # rtol 1e-9
+    assert judge.judge(bilinear, scope, {"value": np.float32(28.6)})[0] == "Correct"
+    encoded = {"t": "npscalar", "dtype": "float32", "v": str(np.float32(28.6))}
+    assert judge.judge(bilinear, scope, {"value": judge.decode(encoded)})[0] == "Correct"
+    predicted = np.array([[0.0, 0.0], [0.0, 0.0]])
+    observed = np.array([[22.5137, 0.0], [0.0, 22.5137]])
+    rms = _task("check_rms(rms, predicted, observed)", ["rms"])            # rtol 1e-6
+    scope = {"predicted": predicted, "observed": observed}
+    assert judge.judge(rms, scope, {"rms": 22.51})[0] == "Correct"
+    assert judge.judge(rms, scope, {"rms": 22.52})[0] == "Not yet"
+    assert engine.accepts_rounded(0.0, 0.003) is False
+
+
+def test_the_judge_uses_the_courses_inputs_and_names_the_students_variable():
+    window = np.array([[10.0, 20.0], [30.0, 60.0]])
+    bilinear = _task("check_bilinear(value, window, dx, dy)", ["value"])
+    cheat = judge.judge(bilinear, {"window": window, "dx": 0.3, "dy": 0.6}, {"value": 10.0})
+    assert cheat[0] == "Not yet"                  # dx, dy = 0, 0 in the kernel change nothing
+    pixels = _task("check_datum_shift_pixels(hrc_shift_px, xy, 29191, 31981, pixel_size=2.5)",
+                   ["hrc_shift_px"])
+    verdict = judge.judge(pixels, {"xy": [[775445.0, 7369105.0]]}, {"hrc_shift_px": 0.0})
+    assert verdict[0] == "Not yet" and "`hrc_shift_px`" in verdict[1]
+    assert judge.answer_names("gain, offset = ..., ...\nx = 1") == ["gain", "offset"]
+
+
+def test_a_misfiled_notebook_matches_by_content(tmp_path):
+    courses = grade.course_notebooks()
+    notebook = nbformat.read(EXERCISE, as_version=4)
+    sources = [grade._normal(cell.source) for cell in notebook.cells if cell.cell_type == "code"]
+    course, note = grade.match_course(tmp_path / "ex04_resampling.ipynb", sources, courses)
+    assert course.path.name == EXERCISE.name and "graded as ex02b_datums" in note
+    course, note = grade.match_course(tmp_path / "ex04_resampling.ipynb", [], courses)
+    assert course.path.name == "ex04_resampling.ipynb" and note == ""
+
+
+@pytest.mark.skipif(sandbox.bwrap_path() is None, reason="bubblewrap (bwrap) is not installed")
+def test_bwrap_hides_the_course_and_the_network(tmp_path):
+    command = sandbox.bwrap_command(
+        [sys.executable, "-c", "import os, socket, sys; print(os.listdir(sys.argv[1]));"
+         "socket.create_connection(('1.1.1.1', 53), timeout=2)", str(ROOT / "exercises")],
+        str(tmp_path), str(tmp_path), [str(ROOT / "exercises")])
+    run = subprocess.run(command, capture_output=True, text=True, timeout=60)
+    assert run.stdout.strip() == "[]" and run.returncode != 0
+
+
+def test_a_task_is_a_solution_its_answers_and_its_checks():
     course = grade.read_course(EXERCISE)
-    assert [task.name for task in course.tasks] == TASKS
-    assert all(task.check_source.startswith("check_") for task in course.tasks)
+    assert [task.name for task in course.tasks] == ["2b.1", "2b.2", "2b.3"]
+    assert [task.answers for task in course.tasks] == [["shift_px"], ["hrc_shift_px"],
+                                                       ["gap_px"]]
     for path in sorted((ROOT / "exercises").glob("*.ipynb")):      # every course notebook reads
         assert grade.read_course(path).tasks
 

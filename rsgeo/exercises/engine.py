@@ -273,7 +273,9 @@ class Declaration:
         except _WrongForm as form:
             return form.verdict(_(self.general))
         expected = task.right
-        if _near(value, expected, self.rtol, scale):
+        wrong = [value for mistake in self.mistakes for value in mistake.answers(task)
+                 if not _near(float(value), expected, self.rtol, scale)]   # no mistake if true
+        if _near(value, expected, self.rtol, scale) or accepts_rounded(value, expected, wrong):
             return Verdict(True, _("`{name}` = {value:.6g}{units}.").format(
                 name=name, value=value, units=self.units))
         message = _("`{name}` is {how}.").format(
@@ -471,7 +473,8 @@ def _number(answer, name, nan_hint="", many=""):
         raise _WrongForm(many or _("`{name}` is an array of shape {shape}, {size} values; the "
                                    "check needs one number.").format(
                                        name=name, shape=array.shape, size=array.size))
-    value = float(array)
+    # a float32 answer is the decimal it prints as (28.6, not 28.600000381469727)
+    value = float(str(array[()])) if array.dtype == np.float32 else float(array)
     if not np.isfinite(value):
         raise _WrongForm(_("`{name}` is {value}, not a finite number.").format(
             name=name, value=value), _(nan_hint) if nan_hint else "")
@@ -520,6 +523,83 @@ def _two_numbers(answer, name):
 
 
 # -- The value of an answer ---------------------------------------------------------------------
+
+#: The one rule every numeric check adds to its own tolerance: an answer written with at least
+#: MIN_DECIMALS decimals is right when it is the right answer rounded to that many decimals,
+#: within ROUNDED_RELATIVE of it (0.00 is not 0.003), and no recognised mistake rounds to it too.
+MIN_DECIMALS = 2
+ROUNDED_RELATIVE = 0.01
+
+
+def decimals_written(answer):
+    """How many decimals ``answer`` is written with (Python's shortest repr): 22.51 has 2.
+
+    Parameters
+    ----------
+    answer : float
+        A number.
+
+    Returns
+    -------
+    int
+        Its decimals; 0 for a number written with an exponent, an infinity or NaN.
+
+    Examples
+    --------
+    >>> decimals_written(22.51), decimals_written(3.0), decimals_written(0.1 + 0.2)
+    (2, 0, 17)
+    """
+    text = repr(float(answer))
+    if "e" in text or "n" in text:               # 1e-05, inf, nan: no rounding to speak of
+        return 0
+    fraction = text.split(".")[1].rstrip("0")
+    return len(fraction)
+
+
+def accepts_rounded(answer, right, wrong=()):
+    """True when ``answer`` is ``right`` rounded to the decimals it is written with (2 or more).
+
+    The one rule, besides each check's own tolerance, by which every numeric check (and the
+    grader, exercises/judge.py) accepts an answer; the teaching guide states it. A recognised
+    mistake that rounds to the same answer makes the rounding ambiguous: not accepted.
+
+    Parameters
+    ----------
+    answer, right : float
+        The student's answer and the right one, in the task's unit.
+    wrong : iterable of float
+        The values of the mistakes the check recognises.
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> accepts_rounded(22.51, 22.5137), accepts_rounded(22.52, 22.5137)
+    (True, False)
+    >>> accepts_rounded(0.0, 0.003), accepts_rounded(22.5, 22.5137)   # 0.00; one decimal
+    (False, False)
+    >>> accepts_rounded(22.51, 22.5137, wrong=[22.5098])             # a mistake rounds there too
+    False
+    """
+    try:
+        answer, right = float(answer), float(right)
+    except (TypeError, ValueError):
+        return False
+    if not (np.isfinite(answer) and np.isfinite(right)):
+        return False
+    decimals = decimals_written(answer)
+    if decimals < MIN_DECIMALS or decimals > 12:
+        return False
+
+    def rounds_to_answer(value):
+        return np.isfinite(value) and abs(round(value, decimals) - answer) <= 1e-12 * max(
+            1.0, abs(answer))
+
+    return bool(rounds_to_answer(right) and abs(answer - right) <= ROUNDED_RELATIVE * abs(right)
+                and not any(rounds_to_answer(float(value)) for value in wrong))
+
 
 def _near(answer, target, rtol, scale=None):
     if not np.isfinite(target):
