@@ -226,7 +226,7 @@ def _one_verdict(call, scope, answers, checks):
     kwargs = {keyword.arg: eval(compile(ast.Expression(keyword.value), "<check>", "eval"), scope)
               for keyword in call.keywords}
     signature = inspect.signature(function)
-    bound = signature.bind(*args, **kwargs)
+    signature.bind(*args, **kwargs)             # the course's call fits the check
     quoted = [arg.id for arg in call.args if isinstance(arg, ast.Name) and arg.id in answers]
     if quoted and "name" in signature.parameters and "name" not in kwargs and len(quoted) == 1:
         kwargs["name"] = quoted[0]            # the verdict names the student's variable
