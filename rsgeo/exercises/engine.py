@@ -33,7 +33,8 @@ from .._i18n import N_, _
 from ..errors import RsgeoError
 
 __all__ = ["ExerciseNotSolved", "Verdict", "Mistake", "Declaration", "declare", "declaration",
-           "declarations", "recognised_mistakes"]
+           "declarations", "recognised_mistakes", "accepts_rounded", "decimals_written",
+           "MIN_DECIMALS", "ROUNDED_RELATIVE"]
 
 
 class ExerciseNotSolved(Exception):
