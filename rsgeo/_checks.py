@@ -15,7 +15,7 @@ from .errors import CRSError, GCPError, GridError, ImageError, RsgeoError
 
 __all__ = [
     "as_points", "as_image", "as_bands_first", "as_nodata", "as_shape", "as_scale",
-    "as_resolution", "as_num_threads", "as_number", "as_integer", "check_choice",
+    "as_resolution", "as_num_threads", "as_number", "as_integer", "as_finite", "check_choice",
     "as_crs",
     "as_output_shape", "as_affine", "memory_bytes",
 ]
@@ -423,6 +423,45 @@ def as_number(value, name, low=None, high=None, why=""):
         raise RsgeoError(_("{name} must be {bounds}{reason}, got {value!r}").format(
             name=name, bounds=_bounds_text(low, high), reason=reason, value=value))
     return number
+
+
+def as_finite(values, name, error=RsgeoError):
+    """Return ``values`` as a float64 array, checked to hold only finite numbers.
+
+    Parameters
+    ----------
+    values : array_like
+        Numbers of any shape.
+    name : str
+        The argument's name, for the message.
+    error : type
+        The :class:`rsgeo.errors.RsgeoError` subclass to raise (a sensor model raises
+        ``ModelError``).
+
+    Returns
+    -------
+    ndarray
+        ``values`` as float64.
+
+    Raises
+    ------
+    RsgeoError
+        ``error``: if ``values`` are not numbers, or hold NaN or infinite values.
+
+    Examples
+    --------
+    >>> as_finite([1, 2.5], "height").tolist()
+    [1.0, 2.5]
+    """
+    try:
+        array = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise error(_("{name} must be numbers, got {value!r}").format(
+            name=name, value=values)) from None
+    if not np.isfinite(array).all():
+        raise error(_("{name} holds NaN or infinite values; every value must be finite")
+                    .format(name=name))
+    return array
 
 
 def as_integer(value, name, low=None, high=None, why=""):

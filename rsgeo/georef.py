@@ -26,6 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import _proj
 from . import transforms as _transforms
 from ._checks import as_crs, as_output_shape, as_points, check_choice
 from ._i18n import _
@@ -264,8 +265,6 @@ def _describe(operation, available=True):
 def _candidates(src_wkt, dst_wkt):
     """PROJ's operations between two CRSs: ([(Transformation, Transformer)] available, most
     accurate first, unknown accuracy last; [Transformation] whose grids are missing)."""
-    from . import _proj
-
     try:
         group = _proj.operations(src_wkt, dst_wkt)
     except Exception as error:        # pyproj's ProjError
@@ -355,19 +354,13 @@ def _forced(src, dst, transformation):
                 "rsgeo ships {shipped}, and downloads nothing").format(
                     name=described.name, codes=" + ".join(described.codes),
                     grids=", ".join(described.grids),
-                    shipped=", ".join(sorted(path.name for path in _grid_folder().glob("*")))))
+                    shipped=", ".join(sorted(path.name for path in _proj.GRIDS.glob("*")))))
     known = "; ".join(f"{' + '.join(t.codes) or '-'} {t.name}"
                       for t in [d for d, _t in usable] + missing)
     raise CRSError(_(
         "PROJ knows no operation {wanted} from {src} to {dst}; it knows: {known}").format(
             wanted=" + ".join(sorted(wanted)), src=_crs_name(src), dst=_crs_name(dst),
             known=known or _("none")))
-
-
-def _grid_folder():
-    from ._proj import GRIDS
-
-    return GRIDS
 
 
 def _check_operation_area(points, src, described):
@@ -415,8 +408,6 @@ def _transform(points, src, dst, transformation=None):
     and whose grids it finds (``transformation=None``), as ``gdalwarp`` does with the same
     grids; or applies the one ``transformation`` names.
     """
-    from . import _proj
-
     if src == dst:
         return points.copy()
     _refuse_far_coordinates(points, src)
@@ -438,8 +429,6 @@ def _used_operations(points, moved, src, dst):
     is named by the first whose result is PROJ's (the same pipeline gives the same numbers).
     A point none reproduces is asked of PROJ itself, one by one.
     """
-    from . import _proj
-
     usable, _missing = _candidates(_wkt(src), _wkt(dst))
     used = np.full(len(points), -1)
     for index, (_described, transformer) in enumerate(usable):
@@ -875,7 +864,7 @@ def _grid_path(grid):
         raise TypeError(_("grid must be one of {known} or the path of a GeoTIFF shift grid, "
                           "got {kind}").format(known=", ".join(SHIFT_GRIDS),
                                                kind=type(grid).__name__))
-    shipped = _grid_folder() / str(name)
+    shipped = _proj.GRIDS / str(name)
     path = shipped if shipped.is_file() else Path(name)
     if not path.is_file():
         raise DataError(_("no shift grid {grid!r}: give one of {known} (shipped with rsgeo) "

@@ -12,7 +12,7 @@ import numpy as np
 from rasterio.warp import transform as warp_transform
 
 from . import data
-from ._checks import as_integer, as_number, as_points, as_shape
+from ._checks import as_finite, as_integer, as_number, as_points, as_shape
 from ._i18n import _
 from .distortion import EARTH_RADIUS_KM, SystematicDistortion
 from .errors import GridError, ModelError
@@ -535,8 +535,8 @@ class RawSensor:
         ValueError
             If a value is not finite or a point is beyond the horizon.
         """
-        x, y, h = np.broadcast_arrays(*(_finite_array(v, name) for v, name in
-                                        ((x, "x"), (y, "y"), (h, "h"))))
+        x, y, h = np.broadcast_arrays(*(as_finite(v, name, error=ModelError)
+                                        for v, name in ((x, "x"), (y, "y"), (h, "h"))))
         cos, sin = self._frame()
         dx, dy = x - self.centre_xy[0], y - self.centre_xy[1]
         across, along = dx * cos - dy * sin, -dx * sin - dy * cos        # metres
@@ -575,8 +575,8 @@ class RawSensor:
         ValueError
             If a value is not finite, or as the distortion's inverse.
         """
-        col, row, h = np.broadcast_arrays(*(_finite_array(v, name) for v, name in
-                                            ((col, "col"), (row, "row"), (h, "h"))))
+        col, row, h = np.broadcast_arrays(*(as_finite(v, name, error=ModelError)
+                                            for v, name in ((col, "col"), (row, "row"), (h, "h"))))
         x, y = self._on_sphere(self._true_grid(col, row), h.ravel())
         return x.reshape(col.shape), y.reshape(col.shape)
 
@@ -630,7 +630,8 @@ class RawSensor:
         from .terrain import line_of_sight_on_dem
 
         iterations = as_integer(iterations, "iterations", low=1)
-        col, row = np.broadcast_arrays(_finite_array(col, "col"), _finite_array(row, "row"))
+        col, row = np.broadcast_arrays(as_finite(col, "col", error=ModelError),
+                                       as_finite(row, "row", error=ModelError))
         true = self._true_grid(col, row)          # the line of sight: once, whatever the height
         x, y, h = line_of_sight_on_dem(lambda h: self._on_sphere(true, h), (col.size,), dem,
                                        dem_transform, iterations)
@@ -668,14 +669,6 @@ class RawSensor:
                                                        "yaw_rate_deg_per_line")
         known = replace(known, yaw_rate_deg_per_line=float(rate))
         return RawSensor(known, self.centre_xy, self.heading_deg, self.offset_km)
-
-
-def _finite_array(values, name):
-    array = np.asarray(values, dtype=np.float64)
-    if not np.isfinite(array).all():
-        raise ModelError(_("{name} holds NaN or infinite values; every value must be finite")
-                         .format(name=name))
-    return array
 
 
 @dataclass

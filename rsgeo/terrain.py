@@ -71,6 +71,7 @@ from numba import njit, prange
 
 from ._checks import (
     as_bands_first,
+    as_finite,
     as_image,
     as_integer,
     as_num_threads,
@@ -129,8 +130,8 @@ def relief_displacement(height_m, view_zenith_deg):
     >>> round(float(relief_displacement(100.0, 45.0)), 6)
     100.0
     """
-    height = _finite(height_m, "height_m")
-    angle = _finite(view_zenith_deg, "view_zenith_deg")
+    height = as_finite(height_m, "height_m")
+    angle = as_finite(view_zenith_deg, "view_zenith_deg")
     if np.any((angle < 0) | (angle >= 90)):
         raise RsgeoError(f"view_zenith_deg must be in [0, 90) degrees (0 = nadir), got "
                          f"{_few(angle[(angle < 0) | (angle >= 90)])}")
@@ -167,9 +168,9 @@ def relief_displacement_photo(height_m, radial_distance_mm, flying_height_m):
     >>> relief_displacement_photo(50.0, 100.0, 4500.0)   # 1:30,000 with a 150 mm lens
     1.1111111111111112
     """
-    height = _finite(height_m, "height_m")
-    radius = _finite(radial_distance_mm, "radial_distance_mm")
-    flying = float(_finite(flying_height_m, "flying_height_m"))
+    height = as_finite(height_m, "height_m")
+    radius = as_finite(radial_distance_mm, "radial_distance_mm")
+    flying = float(as_finite(flying_height_m, "flying_height_m"))
     if np.any(radius < 0):
         raise RsgeoError("radial_distance_mm must be >= 0 (a distance from the principal point), "
                          f"got {_few(radius[radius < 0])}")
@@ -205,8 +206,8 @@ def height_error_budget(position_error_m, view_zenith_deg):
     >>> round(height_error_budget(10.0, 30.0), 2)
     17.32
     """
-    budget = float(_finite(position_error_m, "position_error_m"))
-    angle = float(_finite(view_zenith_deg, "view_zenith_deg"))
+    budget = float(as_finite(position_error_m, "position_error_m"))
+    angle = float(as_finite(view_zenith_deg, "view_zenith_deg"))
     if budget <= 0:
         raise RsgeoError(f"position_error_m must be > 0, got {budget:g}")
     if not 0 < angle < 90:
@@ -259,9 +260,9 @@ def occluded(distance_m, height_m, view_zenith_deg):
     >>> d[occluded(d, h, 45.0)].tolist()
     [12.0, 14.0, 16.0, 18.0]
     """
-    distance = _finite(distance_m, "distance_m")
-    height = _finite(height_m, "height_m")
-    angle = float(_finite(view_zenith_deg, "view_zenith_deg"))
+    distance = as_finite(distance_m, "distance_m")
+    height = as_finite(height_m, "height_m")
+    angle = float(as_finite(view_zenith_deg, "view_zenith_deg"))
     if distance.ndim != 1 or distance.shape != height.shape:
         raise RsgeoError(_("distance_m and height_m must be 1-D of the same length, got "
                            "shapes {a} and {b}").format(a=distance.shape, b=height.shape))
@@ -278,16 +279,6 @@ def occluded(distance_m, height_m, view_zenith_deg):
     reach = height + distance / np.tan(np.radians(angle))
     in_front = np.maximum.accumulate(np.concatenate([[-np.inf], reach[:-1]]))
     return in_front > reach
-
-
-def _finite(value, name):
-    try:
-        array = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise RsgeoError(f"{name} must be numbers, got {value!r}") from None
-    if not np.isfinite(array).all():
-        raise RsgeoError(f"{name} holds NaN or infinite values; every value must be finite")
-    return array
 
 
 def _few(values):
@@ -651,9 +642,9 @@ class RPCModel:
         >>> round(float(lon), 9), round(float(lat), 9)
         (-34.9, -8.0)
         """
-        col = _finite(col, "col")
-        row = _finite(row, "row")
-        height = _finite(height, "height")
+        col = as_finite(col, "col")
+        row = as_finite(row, "row")
+        height = as_finite(height, "height")
         col, row, height = np.broadcast_arrays(col, row, height)
         if not tolerance > 0:
             raise RsgeoError(f"tolerance must be > 0 pixels, got {tolerance!r}")
@@ -711,9 +702,9 @@ def simple_rpc_dict():
 
 
 def _lon_lat_height(lon, lat, height):
-    lon = _finite(lon, "lon")
-    lat = _finite(lat, "lat")
-    height = _finite(height, "height")
+    lon = as_finite(lon, "lon")
+    lat = as_finite(lat, "lat")
+    height = as_finite(height, "height")
     if np.any(np.abs(lat) > 90):
         raise CRSError(f"lat must be in [-90, 90] degrees, got {_few(lat[np.abs(lat) > 90])} "
                        "(longitude and latitude swapped?)")
@@ -774,8 +765,8 @@ def fit_rpc(lon, lat, height, col, row, regularization=1e-10):
     True
     """
     lon, lat, height = (np.ravel(a) for a in _lon_lat_height(lon, lat, height))
-    col = np.ravel(_finite(col, "col"))
-    row = np.ravel(_finite(row, "row"))
+    col = np.ravel(as_finite(col, "col"))
+    row = np.ravel(as_finite(row, "row"))
     if not (lon.size == lat.size == height.size == col.size == row.size):
         raise GCPError(f"lon, lat, height, col and row must have one size, got {lon.size}, "
                        f"{lat.size}, {height.size}, {col.size}, {row.size}")
@@ -977,8 +968,8 @@ class RefinedRPC:
         ValueError
             As :meth:`RPCModel.localize`.
         """
-        col = _finite(col, "col")
-        row = _finite(row, "row")
+        col = as_finite(col, "col")
+        row = as_finite(row, "row")
         p = self.parameters
         a, b, c, d = 1 + p["a1"], p["a2"], p["b1"], 1 + p["b2"]
         det = a * d - b * c
