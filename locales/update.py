@@ -156,23 +156,24 @@ PORTUGUESE_SETTINGS = """\
     i18n_other_book: ../../../html
     i18n_other_language: en
     i18n_other_label: English
-    # pt_BR: the exercises run again with RSGEO_LANG=pt_BR (their verdicts and hints, ~20 s);
-    # the chapters' executions are the English build's
+    # pt_BR: every notebook runs again with RSGEO_LANG=pt_BR (figures, widgets, tables, verdicts
+    # and hints in Portuguese), cached apart from the English executions
     i18n_execute_in_language:
-      - exercises/*
+      - "*"
     # pt_BR: the toggle of a hidden cell (the book hides inputs only: hide-input)
     nb_code_prompt_show: Mostrar o código da célula
     nb_code_prompt_hide: Ocultar o código da célula
     # pt_BR: said once, on the first page
     i18n_root_note:
-      - Código em inglês, números com ponto decimal
+      - Código em inglês, números à brasileira
       - >-
-        O código dos notebooks (nomes, comentários) fica em inglês, assim como o que ele imprime
-        nos capítulos e os rótulos das figuras: os números aparecem como o código os imprime,
-        com ponto decimal (0.5 m, e não 0,5 m). O glossário dá cada termo nas duas línguas. Nos
-        exercícios, as verificações respondem em português (Correto, Ainda não, Dica), e nos
-        notebooks baixados desta edição o rsgeo fala português: vereditos, dicas, mensagens de
-        erro e rótulos das figuras que ele desenha.
+        O código dos notebooks (nomes, comentários) fica em inglês, assim como o que ele imprime:
+        ali os números aparecem como o Python os imprime, com ponto decimal (0.5). No texto, nas
+        figuras e nos quadros, os números seguem o uso brasileiro (0,5 m; 10.000 pares; 1:25.000),
+        e as figuras, os controles interativos e as respostas das verificações dos exercícios
+        (Correto, Ainda não, Dica) estão em português. O glossário dá cada termo nas duas
+        línguas. Nos notebooks baixados desta edição, o rsgeo também fala português: vereditos,
+        dicas, mensagens de erro e rótulos das figuras.
 """
 
 
@@ -214,8 +215,8 @@ def portuguese_config(english):
             out.append("__CACHE__")
     text = "".join(out)
     # after the execute_notebooks comment's continuation lines
-    cache = ("  cache: _build/.jupyter_cache  # pt_BR: the English build's executions (and the "
-             "exercises' own)\n")
+    cache = ("  cache: _build/.jupyter_cache  # pt_BR: the English build's cache, which keeps "
+             "the Portuguese executions apart\n")
     text = re.sub(r"__CACHE__((?:\s{20,}#.*\n)*)", lambda m: m.group(1) + cache, text)
     for needed in ("# pt_BR\n", "locale_dirs", "language: pt_BR", "cache: _build/.jupyter_cache"):
         if needed not in text:
