@@ -6,7 +6,7 @@ theme's labels), the alternative text of its figures, the names of its buttons a
 its widgets hold no English sentence. Left out on purpose: code, printed output, maths, the
 API's docstrings (English like the code, marked ``lang="en"``), the values inside a notebook's
 printed tables (data, such as a GCP's recorded description; their headers are checked), and the
-bibliography's titles of works published in English. The glued numbers are written the Brazilian
+titles of works published in English (in italics, in the bibliography and in the prose). The glued numbers are written the Brazilian
 way (``book/_ext/glue_numbers.py``). The books must have been built (the README's first command);
 without them these tests are skipped, unless ``RSGEO_REQUIRE_BROWSER=1`` (CI), when they fail.
 """
@@ -35,8 +35,10 @@ ENGLISH_WORDS = frozenset(
     "an at into than then when where what how why we you your our each every has have not there "
     "their they can will would should must may after before between without only also does"
     .split())
-# What a reader does not read as the page's language: code, maths, printed output, docstrings
+# What a reader does not read as the page's language: code, maths, printed output, docstrings,
+# and titles of works published in English (in italics, as a title is written)
 UNREAD = ("script, style, code, pre, kbd, .math, mjx-container, [lang='en'], .rsgeo-docstring, "
+          "em, cite, "
           "dl.py, table.autosummary, .citation, div.highlight, .output.stream, "
           ".output.text_plain, .cell_output td, .pasted-text")
 BLOCKS = ("p, li, td, th, h1, h2, h3, h4, h5, figcaption, caption, dt, dd, summary, button, "
