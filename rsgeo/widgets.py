@@ -7,25 +7,31 @@ Colab they redraw live.
 Every widget answers at once: it builds its figure once, and a control's
 change updates that figure's artists in place (``set_data``, ``set_offsets``,
 bar heights, titles) and puts a new PNG of the same figure in the widget's
-``ipywidgets.Output``. Expensive inputs (fitted models, GA runs) are computed
-once and kept. The box a widget function returns carries that figure as its
-``figure`` attribute (``benchmarks/widgets.py`` times every control).
+``ipywidgets.Output``, as an ``<img>`` whose alternative text says what the
+frame shows (:func:`rsgeo.alt_text.describe_figure`). Control names and the
+figures' texts are in rsgeo's language (``rsgeo._i18n``). Expensive
+inputs (fitted models, GA runs) are computed once and kept. The box a widget
+function returns carries that figure as its ``figure`` attribute
+(``benchmarks/widgets.py`` times every control).
 """
 
 import base64
 import io
 import weakref
+from html import escape
 
 import numpy as np
 
 from . import accuracy, distortion, matching, radiometry, transforms
 from ._checks import as_number, check_choice
+from ._i18n import _, prose_number
+from .alt_text import describe_figure
 from .errors import GCPError, GridError, RsgeoError
 from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
 
 __all__ = [
-    "DPI", "render_png", "distortion_explorer", "gcp_explorer", "regression_stretch",
-    "ga_evolution", "draw_evolution_frame", "model_explorer",
+    "DPI", "render_png", "distortion_explorer", "gcp_explorer",
+    "regression_stretch", "ga_evolution", "draw_evolution_frame", "model_explorer",
 ]
 
 #: Resolution of a widget's PNG frames (dots per inch): the figures are 9 to 13 inches wide,
@@ -91,16 +97,70 @@ def render_png(figure, dpi=DPI):
     return buffer.getvalue()
 
 
-def _show(output, figure):
-    """Replace the output's content with a PNG of the figure (one trait change, no flicker)."""
+def _frame_output(figure):
+    """A widget's frame: a PNG of the figure with its alternative text, as a display output.
+
+    Jupyter, Colab and the book's widget manager show the ``text/html``: an ``<img>`` whose
+    ``alt`` is :func:`rsgeo.alt_text.describe_figure` of the figure (made after the PNG, so
+    that it reads the figure's texts as rendered, translated when the book is Portuguese); a
+    text-only front end shows the description. The PNG is not given a second time as
+    ``image/png``: it would double every frame a saved widget page carries.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+
+    Returns
+    -------
+    dict
+        A ``display_data`` output (nbformat), as an ``ipywidgets.Output`` holds it.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> from matplotlib.figure import Figure
+    >>> figure = Figure(figsize=(1, 1))
+    >>> _ = figure.subplots().set(title="nothing yet", xticks=[], yticks=[])
+    >>> frame = _frame_output(figure)
+    >>> sorted(frame["data"])
+    ['text/html', 'text/plain']
+    >>> frame["data"]["text/plain"]
+    'Figure “nothing yet”: nothing drawn.'
+    >>> 'alt="Figure “nothing yet”: nothing drawn."' in frame["data"]["text/html"]
+    True
+    """
     png = base64.b64encode(render_png(figure)).decode("ascii")
-    output.outputs = ({"output_type": "display_data",
-                       "data": {"image/png": png, "text/plain": "<rsgeo widget frame>"},
-                       "metadata": {}},)
+    description = describe_figure(figure)
+    html = (f'<img src="data:image/png;base64,{png}" alt="{escape(description)}" '
+            'style="max-width: 100%; height: auto">')
+    return {"output_type": "display_data",
+            "data": {"text/html": html, "text/plain": description},
+            "metadata": {}}
+
+
+def _show(output, figure):
+    """Replace the output's content with the figure's frame (one trait change, no flicker)."""
+    output.outputs = (_frame_output(figure),)
+
+
+def _plain_descriptions(box):
+    """Every control's description in ``box`` is shown as plain text, never parsed as HTML."""
+    import ipywidgets
+    from ipywidgets.widgets.widget_description import DescriptionWidget
+
+    stack = [box]
+    while stack:
+        widget = stack.pop()
+        if isinstance(widget, ipywidgets.Box):
+            stack.extend(widget.children)
+        elif isinstance(widget, DescriptionWidget):
+            widget.description_allow_html = False
 
 
 def _live(box, output, figure, update, controls):
     """Draw once (with the layout), then redraw on every control's change; return ``box``."""
+    _plain_descriptions(box)
 
     def redraw(change=None):
         try:
@@ -151,28 +211,31 @@ def distortion_explorer(shape=(300, 300)):
     shape = (int(shape[0]), int(shape[1]))
     controls = {
         "latitude": widgets.FloatSlider(value=-23.0, min=-80, max=80, step=1,
-                                        description="latitude °"),
-        "roll": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="roll (px)"),
-        "pitch": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1, description="pitch (px)"),
-        "yaw": widgets.FloatSlider(value=0.0, min=-10, max=10, step=0.5, description="yaw °"),
+                                        description=_("latitude °")),
+        "roll": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1,
+                                    description=_("roll (px)")),
+        "pitch": widgets.FloatSlider(value=0.0, min=-20, max=20, step=1,
+                                     description=_("pitch (px)")),
+        "yaw": widgets.FloatSlider(value=0.0, min=-10, max=10, step=0.5, description=_("yaw °")),
         "yaw_rate": widgets.FloatSlider(value=0.0, min=-0.03, max=0.03, step=0.005,
                                         readout_format=".3f",
-                                        description="yaw °/line"),
-        "scan": widgets.FloatSlider(value=30.0, min=0, max=60, step=1, description="scan angle °"),
+                                        description=_("yaw °/line")),
+        "scan": widgets.FloatSlider(value=30.0, min=0, max=60, step=1,
+                                    description=_("scan angle °")),
     }
     figure = _widget_figure((11, 4.5))
     left, right = figure.subplots(1, 2)
     nominal = distortion.distorted_grid(distortion.SystematicDistortion(), shape, 50)
     draw_grid(left, nominal, color="lightgray")
     grid = draw_grid(left, nominal)
-    left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel="column (pixels)",
-             ylabel="row (pixels)")
+    left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel=_("column (pixels)"),
+             ylabel=_("row (pixels)"))
     angles = np.linspace(0, 60, 121)
     along, across = distortion.pixel_size(angles, 705.0)
-    right.plot(angles, along, label="along track")
-    right.plot(angles, across, label="across track")
+    right.plot(angles, along, label=_("along track"))
+    right.plot(angles, across, label=_("across track"))
     marks = right.scatter([0, 0], [1, 1], color="black", zorder=3)
-    right.set(xlabel="scan angle (degrees)", ylabel="pixel size (km), 1 km at nadir")
+    right.set(xlabel=_("scan angle (degrees)"), ylabel=_("pixel size (km), 1 km at nadir"))
     right.legend()
 
     def update():
@@ -183,12 +246,13 @@ def distortion_explorer(shape=(300, 300)):
             skew_per_line=skew_km / 185.0, roll_px=value["roll"], pitch_px=value["pitch"],
             yaw_deg=value["yaw"], yaw_rate_deg_per_line=value["yaw_rate"])
         grid.set_data(*grid_path(distortion.distorted_grid(model, shape, 50)))
-        left.set_title(f"grid as recorded (last line {skew_km:.1f} km west per 185 km)", y=1.0)
+        left.set_title(_("grid as recorded (last line {skew:.1f} km west per 185 km)").format(
+            skew=prose_number(skew_km)), y=1.0)
         a, c = distortion.pixel_size(value["scan"], 705.0)
         marks.set_offsets([[value["scan"], float(a)], [value["scan"], float(c)]])
-        right.set_title(f"MODIS-like, 705 km: {float(a):.2f} × {float(c):.2f} km at "
-                        f"{value['scan']:.0f}°",
-                        y=1.0)
+        right.set_title(_("MODIS-like, 705 km: {along:.2f} × {across:.2f} km at {angle:.0f}°")
+                        .format(along=prose_number(float(a)), across=prose_number(float(c)),
+                                angle=prose_number(value["scan"])), y=1.0)
 
     output = widgets.Output()
     box = widgets.VBox([widgets.HBox(list(controls.values())[:3]),
@@ -226,34 +290,36 @@ def gcp_explorer(gcps, order=1, index=0):
     if not 0 <= int(index) < len(gcps):
         raise GCPError(f"index must name one of the {len(gcps)} GCPs (0 to {len(gcps) - 1}), got "
                        f"{index}")
-    dcol = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δcol (px)")
-    drow = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description="Δrow (px)")
+    dcol = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description=_("Δcol (px)"))
+    drow = widgets.FloatSlider(value=0, min=-15, max=15, step=0.5, description=_("Δrow (px)"))
     which = widgets.Dropdown(options=[(name, i) for i, name in enumerate(gcps.ids)],
                              value=int(index),
-                             description="GCP")
-    degree = widgets.Dropdown(options=[1, 2, 3], value=order, description="degree")
+                             description=_("GCP"))
+    degree = widgets.Dropdown(options=[1, 2, 3], value=order, description=_("degree"))
     figure = _widget_figure((9, 3.5))
     ax = figure.subplots()
     names = [str(name) for name in gcps.ids]
     bars = ax.bar(names, np.zeros(len(names)), color="tab:blue")
     rms_line = ax.axhline(0.0, color="black", linestyle="--", label="RMS")
     legend = ax.legend(loc="upper right")
-    ax.set(xlabel="GCP (id)", ylabel="residual R_i (pixels)")
+    ax.set(xlabel=_("GCP (id)"), ylabel=_("residual R_i (pixels)"))
 
     def update():
         image_xy = gcps.image_xy.copy()
         image_xy[which.value] += (dcol.value, drow.value)
         model = transforms.fit_polynomial(gcps.map_xy, image_xy, degree.value)
-        _, _, distance = accuracy.residuals(model, gcps.map_xy, image_xy)
+        distance = accuracy.residuals(model, gcps.map_xy, image_xy)[2]
         rms = model.rms(gcps.map_xy, image_xy)
         for i, (bar, height) in enumerate(zip(bars, distance)):
             bar.set_height(height)
             bar.set_facecolor("tab:red" if i == which.value else "tab:blue")
         rms_line.set_ydata([rms, rms])
-        legend.get_texts()[0].set_text(f"RMS = {rms:.2f} px")
+        legend.get_texts()[0].set_text(_("RMS = {rms:.2f} px").format(rms=prose_number(rms)))
         ax.set_ylim(0, 1.15 * max(float(np.max(distance)), rms, 1e-3))
-        ax.set_title(f"degree {degree.value}: residuals after moving {names[which.value]} by "
-                     f"({dcol.value:+.1f}, {drow.value:+.1f}) px", y=1.0)
+        ax.set_title(_("degree {degree}: residuals after moving {name} by ({dcol:+.1f}, "
+                       "{drow:+.1f}) px").format(degree=degree.value, name=names[which.value],
+                                                 dcol=prose_number(dcol.value),
+                                                 drow=prose_number(drow.value)), y=1.0)
 
     output = widgets.Output()
     box = widgets.VBox([widgets.HBox([which, degree]), widgets.HBox([dcol, drow]), output])
@@ -307,19 +373,20 @@ def regression_stretch(x_image, y_image, sizes=(1, 3, 5, 7), size=3, methods=("o
     fits = {(s, m): radiometry.fit_gain_offset(x_image, y_image, smooth=s if s > 1 else None,
                                                method=m)
             for s in sizes for m in methods}
-    step = widgets.IntSlider(value=0, min=0, max=10, description="t × 10")
-    play = widgets.Play(value=0, min=0, max=10, step=1, interval=400, description="play")
+    step = widgets.IntSlider(value=0, min=0, max=10, description=_("t × 10"))
+    play = widgets.Play(value=0, min=0, max=10, step=1, interval=400, description=_("play"))
     widgets.jslink((play, "value"), (step, "value"))
-    size = widgets.Dropdown(options=list(sizes), value=size, description="filter")
-    method = widgets.Dropdown(options=list(methods), value=methods[0], description="method")
+    size = widgets.Dropdown(options=list(sizes), value=size, description=_("filter"))
+    method = widgets.Dropdown(options=list(methods), value=methods[0], description=_("method"))
     figure = _widget_figure((13, 4))
     axes = figure.subplots(1, 3)
 
     def update():
         fit = fits[size.value, method.value]
         draw_stretch_frame(axes, x_image, y_image, fit.gain, fit.offset, step.value / 10,
-                           title_extra=f"\n({method.value}, filter {size.value}×{size.value}: "
-                                       f"r = {fit.r:.3f})")
+                           title_extra="\n" + _("({method}, filter {size}×{size}: r = {r:.3f})")
+                           .format(method=method.value, size=size.value,
+                                   r=prose_number(fit.r)))
 
     output = widgets.Output()
     box = widgets.VBox([widgets.HBox([play, step]), widgets.HBox([size, method]), output])
@@ -373,17 +440,18 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
                          f"got {len(truth)}")
     generations = int(generations)
     # a GA run per change: the sliders report on release, not at every step of a drag
-    population = widgets.IntSlider(value=60, min=10, max=200, step=10, description="population",
+    population = widgets.IntSlider(value=60, min=10, max=200, step=10, description=_("population"),
                                    continuous_update=False)
-    elite = widgets.FloatSlider(value=0.05, min=0, max=0.3, step=0.01, description="elitism",
+    elite = widgets.FloatSlider(value=0.05, min=0, max=0.3, step=0.01, description=_("elitism"),
                                 continuous_update=False)
     mutation = widgets.FloatSlider(value=0.04, min=0.0, max=0.2, step=0.005, readout_format=".3f",
-                                   description="mutation", continuous_update=False)
+                                   description=_("mutation"), continuous_update=False)
     selection = widgets.Dropdown(options=["tournament", "roulette"], value="tournament",
-                                 description="selection")
-    generation = widgets.IntSlider(value=0, min=0, max=generations - 1, description="generation")
+                                 description=_("selection"))
+    generation = widgets.IntSlider(value=0, min=0, max=generations - 1,
+                                   description=_("generation"))
     play = widgets.Play(value=0, min=0, max=generations - 1, step=1, interval=150,
-                        description="play")
+                        description=_("play"))
     widgets.jslink((play, "value"), (generation, "value"))
     runs = {}
     figure = _widget_figure((12, 4.5))
@@ -451,7 +519,7 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
     if fresh:
         state = _draw_evolution_axes(figure, reference, adjustment, truth, last)
         _EVOLUTION_ARTISTS[figure] = state
-    left, _ = state["axes"]
+    left = state["axes"][0]
     solution = history[-1]["best_solution"]
     segments, colours = [], []
     for k, label in enumerate(solution):
@@ -460,7 +528,8 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
             colours.append("tab:green" if label == truth[k] else "tab:red")
     state["matches"].set_segments(segments)
     state["matches"].set_color(colours or "none")
-    left.set_title(f"generation {len(history) - 1}: {np.asarray(solution).tolist()}", y=1.0)
+    left.set_title(_("generation {number}: {solution}").format(
+        number=len(history) - 1, solution=np.asarray(solution).tolist()), y=1.0)
     shown = np.arange(len(history))
     for line, name in zip(state["curves"], ("best", "mean", "diversity")):
         line.set_data(shown, [h[name] for h in history])
@@ -486,15 +555,15 @@ def _draw_evolution_axes(figure, reference, adjustment, truth, last):
     draw_mesh(left, shifted, color="tab:orange")
     matches = LineCollection([], linewidths=1.5)
     left.add_collection(matches, autolim=False)
-    left.set(xlabel="x (map units)", ylabel="y (map units)")
+    left.set(xlabel=_("x (map units)"), ylabel=_("y (map units)"))
     left.invert_yaxis()
     style = {"marker": "o", "markersize": 3}
-    curves = (right.plot([], [], label="best FA", **style)[0],
-              right.plot([], [], label="mean FA", **style)[0],
-              right.plot([], [], label="diversity", linestyle=":", **style)[0])
-    right.set(xlabel="generation (count)", ylabel="FA or diversity (0–1)", ylim=(0, 1.02),
+    curves = (right.plot([], [], label=_("best FA"), **style)[0],
+              right.plot([], [], label=_("mean FA"), **style)[0],
+              right.plot([], [], label=_("diversity"), linestyle=":", **style)[0])
+    right.set(xlabel=_("generation (count)"), ylabel=_("FA or diversity (0–1)"), ylim=(0, 1.02),
               xlim=(-0.5, max(last, 1) + 0.5))
-    right.set_title("evolution", y=1.0)
+    right.set_title(_("evolution"), y=1.0)
     right.legend(loc="lower right")
     return {"reference": reference, "adjustment": adjustment, "truth": truth, "last": last,
             "axes": (left, right), "shifted": shifted, "matches": matches, "curves": curves}
@@ -557,9 +626,9 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
                          fitted_model(map_xy) - image_xy,
                          fitted_model.rms(map_xy, image_xy), float(np.sqrt(np.mean(loo**2))))
 
-    choice = widgets.Dropdown(options=labels, value=model, description="model")
+    choice = widgets.Dropdown(options=labels, value=model, description=_("model"))
     factor = widgets.FloatSlider(value=exaggeration, min=1, max=50, step=1,
-                                 description="× drawn")
+                                 description=_("× drawn"))
     figure = _widget_figure((7.5, 7))
     ax = figure.subplots()
     grid_line, = ax.plot([], [], color="tab:blue", linewidth=0.8)
@@ -570,7 +639,7 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     span = image_xy.max(axis=0) - image_xy.min(axis=0)
     ax.set(xlim=(image_xy[:, 0].min() - 0.25 * span[0], image_xy[:, 0].max() + 0.25 * span[0]),
            ylim=(image_xy[:, 1].max() + 0.25 * span[1], image_xy[:, 1].min() - 0.25 * span[1]),
-           xlabel="column (px)", ylabel="row (px)", aspect="equal")
+           xlabel=_("column (px)"), ylabel=_("row (px)"), aspect="equal")
     sizes = [len(line) for line in lines]
 
     def update():
@@ -581,8 +650,11 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
         grid_line.set_data(*grid_path([(part[:, 0], part[:, 1]) for part in parts]))
         arrows.set_UVC(residual[:, 0], residual[:, 1])
         arrows.scale = 1.0 / k
-        ax.set_title(f"{choice.value} ({n_parameters} parameters), drawn ×{k:g}: fitting RMS "
-                     f"{rms:.2f} px, leave-one-out RMS {loo:.2f} px", y=1.0, fontsize=9)
+        ax.set_title(_("{model} ({count} parameters), drawn ×{factor:g}: fitting RMS {rms:.2f} "
+                       "px, leave-one-out RMS {loo:.2f} px").format(
+                           model=choice.value, count=n_parameters, factor=prose_number(k),
+                           rms=prose_number(rms), loo=prose_number(loo)),
+                     y=1.0, fontsize=9)
 
     output = widgets.Output()
     box = widgets.VBox([widgets.HBox([choice, factor]), output])

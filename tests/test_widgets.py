@@ -4,6 +4,8 @@ the widget's output, and a clean figure audit at every frame. No timed assertion
 benchmarks/widgets.py's business."""
 
 import base64
+import html
+import re
 
 import matplotlib
 
@@ -14,6 +16,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 from rsgeo import accuracy, data, distortion, matching, radiometry, synthetic, transforms, widgets  # noqa: E402
+from rsgeo.alt_text import describe_figure  # noqa: E402
 from rsgeo.plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path  # noqa: E402
 
 from figure_audit import figure_problems  # noqa: E402
@@ -39,20 +42,35 @@ def controls(box):
     return found
 
 
+def _frame_image(box):
+    """(PNG as base64, alt text) of the frame the widget shows now (its HTML's only <img>)."""
+    (shown,) = box.children[-1].outputs
+    images = re.findall(r'<img src="data:image/png;base64,([^"]+)" alt="([^"]*)"',
+                        shown["data"].get("text/html", ""))
+    assert len(images) == 1, "the frame is not one <img> with an alt"
+    return images[0]
+
+
 def frame(box):
     """The PNG the widget's output shows now."""
-    (shown,) = box.children[-1].outputs
-    return base64.b64decode(shown["data"]["image/png"])
+    return base64.b64decode(_frame_image(box)[0])
+
+
+def frame_alt(box):
+    """The alternative text of the frame the widget shows now (its HTML's only <img>)."""
+    return html.unescape(_frame_image(box)[1])
 
 
 def changes_in_place(box, control, value):
-    """Set a control; check the same figure and axes were updated and a new frame shown."""
+    """Set a control; check the same figure and axes were updated and a new frame shown, with
+    the alternative text of the new frame."""
     figure, axes, png = box.figure, list(box.figure.axes), frame(box)
     control.value = value
     assert box.figure is figure and box.figure.axes == axes, "a new figure or new axes were built"
     assert frame(box) != png, f"{control.description}: the frame did not change"
     assert frame(box).startswith(b"\x89PNG")
     assert figure_problems(figure) == []
+    assert frame_alt(box) == describe_figure(figure) != ""
 
 
 def test_distortion_explorer_moves_its_grid_and_markers():
@@ -209,3 +227,33 @@ def test_frames_are_drawn_once_and_widget_figures_stay_out_of_jupyter_cells(monk
                         lambda: "module://matplotlib_inline.backend_inline")
     box = widgets.distortion_explorer()
     assert box.figure not in [plt.figure(number) for number in plt.get_fignums()]
+
+
+def test_every_frame_says_what_it_shows_and_controls_are_plain_text():
+    from ipywidgets.widgets.widget_description import DescriptionWidget
+
+    box = widgets.distortion_explorer()
+    alt = frame_alt(box)
+    title = box.figure.axes[0].get_title()
+    assert alt.startswith("Figure of 2 panels. Panel 1, “grid as recorded (last line ")
+    assert title in alt and "legend: “along track”, “across track”" in alt
+    assert box.children[-1].outputs[0]["data"]["text/plain"] == alt
+    described = [widget for row in box.children[:-1] for widget in row.children]
+    assert described and all(isinstance(widget, DescriptionWidget)
+                             and widget.description_allow_html is False for widget in described)
+    with pytest.raises(AssertionError, match="alt"):        # the check sees a frame without one
+        box.children[-1].outputs = ({"output_type": "display_data",
+                                     "data": {"image/png": "iVBORw0KGgo=",
+                                              "text/html": '<img src="data:image/png;base64,'
+                                                           'iVBORw0KGgo=">'},
+                                     "metadata": {}},)
+        frame_alt(box)
+
+
+def test_widget_controls_and_frames_speak_portuguese(monkeypatch):
+    from rsgeo import _i18n
+
+    monkeypatch.setattr(_i18n, "_chosen", "pt_BR")
+    box = widgets.distortion_explorer()
+    assert {"rolamento (px)", "arfagem (px)", "guinada °"} <= set(controls(box))
+    assert frame_alt(box).startswith("Figura com 2 painéis. Painel 1, ")

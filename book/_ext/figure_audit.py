@@ -135,8 +135,10 @@ def audit_rendered_figures(to_stderr=False):
     Each new problem is appended to ``FIGURE_PROBLEMS`` and, with ``to_stderr``, written to
     standard error as a line starting with ``FIGURE_PROBLEM_PREFIX``. The book's build turns
     this on in its kernels (:data:`KERNEL_ARGUMENTS`), where any standard-error output fails
-    the build. It patches matplotlib's ``FigureCanvasBase.print_figure`` for the running
-    process only.
+    the build. Every PNG gets a ``Description`` text chunk,
+    :func:`rsgeo.alt_text.describe_figure` of its figure, which the book's extension
+    figure_alt.py makes the image's alternative text. It patches matplotlib's
+    ``FigureCanvasBase.print_figure`` for the running process only.
 
     Parameters
     ----------
@@ -156,7 +158,13 @@ def audit_rendered_figures(to_stderr=False):
     original = FigureCanvasBase.print_figure
 
     def print_figure(self, *args, **kwargs):
-        for problem in figure_problems(self.figure):
+        problems = figure_problems(self.figure)
+        if _saved_format(args, kwargs) == "png":
+            # the PNG says what it shows (a tEXt/iTXt chunk): figure_alt.py makes it the alt
+            description, problem = _description(self.figure)
+            kwargs["metadata"] = {"Description": description, **(kwargs.get("metadata") or {})}
+            problems += [problem] if problem else []
+        for problem in problems:
             if problem not in FIGURE_PROBLEMS:
                 FIGURE_PROBLEMS.append(problem)
                 if to_stderr:
@@ -165,6 +173,32 @@ def audit_rendered_figures(to_stderr=False):
 
     print_figure._figure_audit = True
     FigureCanvasBase.print_figure = print_figure
+
+
+def _saved_format(args, kwargs):
+    """The format ``print_figure(filename, ..., format=None)`` saves in, as matplotlib decides:
+    the ``format`` argument, else the file name's extension, else ``savefig.format``."""
+    import matplotlib
+
+    chosen = kwargs.get("format") or (args[5] if len(args) > 5 else None)
+    if chosen is None and args:
+        name = args[0] if isinstance(args[0], (str, Path)) else getattr(args[0], "name", None)
+        if isinstance(name, (str, Path)) and Path(name).suffix:
+            chosen = Path(name).suffix[1:]
+    return str(chosen or matplotlib.rcParams["savefig.format"]).lower()
+
+
+def _description(figure):
+    """(:func:`rsgeo.alt_text.describe_figure` of ``figure``, None), or (None, the problem)
+    when rsgeo cannot describe it: the figure is still saved, without a description."""
+    try:
+        from rsgeo.alt_text import describe_figure
+
+        return describe_figure(figure), None
+    except Exception as error:  # noqa: BLE001 - an audit must not stop the figure it audits
+        titles = [ax.get_title() for ax in figure.axes if ax.get_title()]
+        return None, (f"the figure {titles[0] if titles else ''!r} has no description: "
+                      f"{type(error).__name__}: {error}")
 
 
 def problems_written(notebook):
