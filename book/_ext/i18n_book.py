@@ -3,9 +3,13 @@
 Loaded by both builds (``_config.yml`` and ``_config_pt.yml``):
 
 - **Docstrings stay English, like code.** Every text node that autodoc or autosummary makes from
-  rsgeo's docstrings (signatures, descriptions, parameter lists, examples, summary tables) is
-  marked ``translatable=False`` before Sphinx's ``Locale`` transform, so it never enters the
-  catalogue (``api.po`` holds the API page's own prose only) and is never replaced.
+  rsgeo's docstrings (descriptions, parameter lists, examples, summary tables) is marked
+  ``translatable=False`` before Sphinx's ``Locale`` transform, so it never enters the catalogue
+  (``api.po`` holds the API page's own prose only) and is never replaced. Inline nodes (a
+  signature's names, parameters and defaults) are left alone: Sphinx never translates an inline
+  node without that attribute, and ``RemoveTranslatableInline`` moves any inline node that has
+  it to the end of its parent, which garbled the signatures ("Raster(:ndarrayarray, ...)"). In a
+  translated book every docstring block says ``lang="en"`` to screen readers and search.
 - **Translations that start like a Markdown list** ("1. Distorções sistemáticas", a chapter's
   title) are escaped before Sphinx parses them, which would otherwise keep the English silently.
 - **Exercise titles** (sphinx-exercise's subtitles, made without a source) become messages of
@@ -17,9 +21,12 @@ Loaded by both builds (``_config.yml`` and ``_config_pt.yml``):
   from the built folders offline; plus ``<link rel="alternate" hreflang=...>``.
 - **A note on the root page** of a translated book (``i18n_root_note``: title and text), said
   once: code stays English, numbers are written as the code prints them.
-- **Exercises executed in the book's language** (``i18n_execute_in_language``: docname
-  patterns): a hidden first cell sets ``RSGEO_LANG``, so the checks' verdicts and hints in the
-  translated book speak its language; every other notebook's execution is the English build's.
+- **Notebooks executed in the book's language** (``i18n_execute_in_language``: docname
+  patterns; the Portuguese book gives ``*``, every notebook): a hidden first cell sets
+  ``RSGEO_LANG`` and translates every figure as it is rendered and every table as it is shown
+  (:mod:`rsgeo.figure_language`), so the figures, widgets, tables, verdicts and hints of the
+  translated book speak its language; a notebook no pattern matches shows the English build's
+  execution.
 - **Notebooks to download in the book's language.** After a translated build, the copies of the
   notebooks under ``_sources/`` (what the download button gives) get their Markdown cells
   translated from the same catalogues, and a first cell that sets ``RSGEO_LANG`` so that rsgeo's
@@ -38,6 +45,9 @@ from sphinx import addnodes
 from sphinx.transforms import SphinxTransform
 
 ENGLISH = "en"
+ENGLISH_CLASS = "language-" + ENGLISH
+# the theme options that are texts the reader sees (see translate_theme_texts)
+THEME_TEXTS = ("theme_search_bar_text",)
 
 
 # -- Docstrings stay English ------------------------------------------------------------------
@@ -54,24 +64,36 @@ class KeepDocstringsEnglish(SphinxTransform):
     default_priority = 5
 
     def apply(self, **kwargs):
-        generated = set()
+        generated, english_blocks = set(), []
         for container in self.document.findall(addnodes.desc):
+            english_blocks.append(container)
             generated.update(container.findall(nodes.TextElement))
         for table in self.document.findall(nodes.table):
             # autosummary's table has the class "autosummary longtable" (one string)
             if any("autosummary" in name for name in table.get("classes", [])):
+                english_blocks.append(table)
                 generated.update(table.findall(nodes.TextElement))
         docstrings = [node for node in self.document.findall(nodes.TextElement)
                       if _from_docstring(node)]
         generated.update(docstrings)
         for node in generated:
-            node["translatable"] = False
+            # an inline node is never translated without the attribute, and Sphinx's
+            # RemoveTranslatableInline would move it to the end of its parent if it had one
+            if not isinstance(node, nodes.Inline):
+                node["translatable"] = False
         # a module's docstring (its paragraphs, its own sections) sits outside any desc node:
         # the class says "English on purpose" to the reader's stylesheet and to the tests
         for node in docstrings:
             target = node.parent if isinstance(node, nodes.title) else node
             if "rsgeo-docstring" not in target["classes"]:
                 target["classes"].append("rsgeo-docstring")
+            if not isinstance(target, nodes.Inline):
+                english_blocks.append(target)
+        if (self.config.language or ENGLISH) != ENGLISH:
+            for block in english_blocks:
+                # docutils' HTML writer turns the class "language-en" into lang="en"
+                if ENGLISH_CLASS not in block["classes"]:
+                    block["classes"].append(ENGLISH_CLASS)
 
 
 # -- Exercise titles ---------------------------------------------------------------------------
@@ -201,6 +223,12 @@ def other_page_url(pagename, other_book):
 
 
 def add_language_switch(app, pagename, templatename, context, doctree):
+    """``html-page-context``: the switch to the same page in the other book.
+
+    The page template (book/_templates/layout.html) puts ``rsgeo_language_switch`` right after
+    the theme's skip link, before the sidebar's table of contents: it is the second Tab stop and
+    the first line of the page on a phone, where the sidebar is folded away.
+    """
     other_book = app.config.i18n_other_book
     # the page-per-document HTML books only (not singlehtml, which the printed course uses)
     if (not other_book or app.builder.name != "html" or doctree is None
@@ -209,11 +237,24 @@ def add_language_switch(app, pagename, templatename, context, doctree):
     url = other_page_url(pagename, other_book)
     language, label = app.config.i18n_other_language, app.config.i18n_other_label
     hreflang = language.replace("_", "-")
-    switch = (f'<p class="rsgeo-language-switch" style="text-align:right;margin:0">'
-              f'<a href="{url}" hreflang="{hreflang}" lang="{hreflang}">{label}</a></p>\n')
-    context["body"] = switch + context.get("body", "")
+    context["rsgeo_language_switch"] = (
+        f'<p class="rsgeo-language-switch d-print-none">'
+        f'<a href="{url}" hreflang="{hreflang}" lang="{hreflang}">{label}</a></p>')
     context["metatags"] = (context.get("metatags", "")
                            + f'\n<link rel="alternate" hreflang="{hreflang}" href="{url}" />')
+
+
+def translate_theme_texts(app, pagename, templatename, context, doctree):
+    """``html-page-context``: theme options that are texts (Jupyter Book's search placeholder
+    "Search this book...") in the book's language, from the "sphinx" catalogue
+    (locales/pt_BR/LC_MESSAGES/sphinx.po), like the themes' own labels."""
+    if (app.config.language or ENGLISH) == ENGLISH:
+        return
+    from sphinx.locale import _
+
+    for option in THEME_TEXTS:
+        if context.get(option):
+            context[option] = _(context[option])
 
 
 # -- The note on the root page of a translated book ---------------------------------------------
@@ -282,12 +323,19 @@ def translate_markdown(source, catalogue):
 
 
 def language_cell(language):
-    """A code cell that makes rsgeo speak ``language`` in the kernel (hidden in the book)."""
+    """A code cell that makes rsgeo speak ``language`` in the kernel (hidden in the book): its
+    verdicts, hints and errors, and (:func:`rsgeo.figure_language.translate_rendered_figures`)
+    every figure the notebook renders and every table it shows."""
     return {"cell_type": "code", "execution_count": None, "id": "rsgeo-language",
             "metadata": {"tags": ["remove-cell"]}, "outputs": [],
             "source": ["import os\n", "\n",
                        f'os.environ["RSGEO_LANG"] = "{language}"  # rsgeo speaks {language}: '
-                       "verdicts, hints, errors, figure labels"]}
+                       "verdicts, hints, errors,\n",
+                       "# and the figures' and tables' texts (the notebook's code stays "
+                       "English)\n",
+                       "from rsgeo.figure_language import translate_rendered_figures\n",
+                       "\n",
+                       "translate_rendered_figures()"]}
 
 
 def translated_notebook(path, catalogue, language):
@@ -306,11 +354,9 @@ def translated_notebook(path, catalogue, language):
 
 def execute_in_language(app, docname, source):
     """``source-read``: in a translated build, the notebooks matching ``i18n_execute_in_language``
-    (the exercises: their checks' verdicts and hints are what a student reads) get the hidden
-    language cell first. Their code changes, so jupyter-cache keeps their Portuguese execution
-    apart from the English one; every other notebook is read from the English build's cache, run
-    once for both books (a missing one is executed without RSGEO_LANG, so the shared cache only
-    ever holds English executions)."""
+    get the hidden language cell first. Their code changes, so jupyter-cache keeps their
+    Portuguese execution apart from the English one in the same cache; a notebook no pattern
+    matches is read from the English build's execution (or executed without RSGEO_LANG)."""
     language = app.config.language or ENGLISH
     patterns = app.config.i18n_execute_in_language
     if language == ENGLISH or not any(fnmatch.fnmatch(docname, pattern) for pattern in patterns):
@@ -355,5 +401,6 @@ def setup(app):
     app.connect("doctree-read", add_root_note)
     app.connect("doctree-resolved", catalogue_exercise_titles)
     app.connect("html-page-context", add_language_switch)
+    app.connect("html-page-context", translate_theme_texts)
     app.connect("build-finished", translate_downloads)
     return {"parallel_read_safe": True, "parallel_write_safe": True}

@@ -14,15 +14,24 @@ pages, so the repository keeps one copy of each font and no symbolic link.
 Launch buttons tell the truth: while ``repository.url`` in _config.yml is a placeholder (or
 empty), the book has no Binder, Colab or repository button and names no repository at all.
 
+The book works on a phone, by keyboard and with a screen reader (book/_templates,
+book/_static/rsgeo-book.css, and :func:`accessible_body` for what myst-nb and docutils write),
+and weighs what it uses: Font Awesome holds only the icons the built pages use
+(:func:`subset_fontawesome`), MathJax loads only on pages with mathematics, and the widgets' names
+for screen readers (book/_static/rsgeo-widgets.js) only on pages with widgets. Search ranks the
+chapters above the API reference's entries (book/_templates/search_scorer.js).
+
 Every kernel the build starts talks over Unix sockets and audits the figures it renders
 (:class:`AuditedKernelManager`, figure_audit.py): an unreadable figure fails the build.
 """
 
 import os
+import re
 import shutil
 import tempfile
 from pathlib import Path
 
+from docutils import nodes
 from jupyter_client.manager import AsyncKernelManager
 from nbclient import NotebookClient
 
@@ -33,6 +42,158 @@ FONT_FOLDERS = ("@jupyter-widgets", "@jupyter-widgets/html-manager/dist")
 # repository URLs that name no real repository: the book gets no launch button while one is set
 PLACEHOLDER_REPOSITORIES = ("https://github.com/OWNER/REPOSITORY",
                             "https://github.com/rsgeo-course/rsgeo-course")
+
+
+# the book's templates, stylesheet and scripts, relative to the configuration folder (the root)
+TEMPLATES = "book/_templates"
+STATIC = "book/_static"
+SEARCH_SCORER = "book/_templates/search_scorer.js"
+STYLESHEET = "rsgeo-book.css"
+WIDGET_SCRIPT = "rsgeo-widgets.js"
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+# names that rsgeo-widgets.js gives the widgets' icon-only buttons and unnamed slider handles
+# (translated through the "sphinx" catalogue: locales/pt_BR/LC_MESSAGES/sphinx.po)
+WIDGET_NAMES = {"play": "Play", "pause": "Pause", "stop": "Stop", "repeat": "Repeat",
+                "slider": "Slider"}
+# Font Awesome icons that scripts create after the page has loaded (the HTML of the built pages
+# names all the others): the widgets' Play buttons, checkboxes and dropdowns (ipywidgets), the
+# search dialog's close button (pydata-sphinx-theme), and the launch and repository buttons a
+# configured repository brings (sphinx-book-theme)
+RUNTIME_ICONS = {"play", "pause", "stop", "retweet", "repeat", "check", "times", "xmark",
+                 "caret-down", "caret-right", "rocket", "github", "lightbulb", "pencil",
+                 "pencil-alt", "spinner", "circle-notch"}
+# one icon of Font Awesome's JavaScript packs: name: [width, height, [aliases], unicode, path]
+FONTAWESOME_ICON = re.compile(r'(?:"([a-z0-9-]+)"|([a-z0-9_$]+)):\[\d+,\d+,\[([^\]]*)\],'
+                              r'"[0-9a-f]+",(?:"[^"]*"|\[[^\]]*\])\]')
+ICON_CLASS = re.compile(r"\bfa-([a-z0-9]+(?:-[a-z0-9]+)*)")
+# docutils' bibliography: a role="list" whose items say role="doc-biblioentry" (deprecated, and
+# not a list item: axe aria-required-children)
+CITATION_ENTRY = 'role="doc-biblioentry"'
+# myst-nb's toggle of a hidden cell: its aria-label hid the visible "Show code cell source"
+HIDDEN_CELL_LABEL = ' aria-label="Toggle hidden content"'
+# pandas' empty top-left header cell (axe empty-table-header): an empty data cell instead
+EMPTY_HEADER = re.compile(r"<th(\s[^>]*)?>(\s|&nbsp;)*</th>")
+
+
+def add_book_files(app, config):
+    """``config-inited``: the book's templates (the theme's components overridden by name), its
+    static files and its search scorer, so that the configurations need not list them."""
+    confdir = Path(app.confdir)
+    if (confdir / TEMPLATES).is_dir() and TEMPLATES not in config.templates_path:
+        # first: the themes add their own components' folders to templates_path too
+        config.templates_path = [TEMPLATES, *config.templates_path]
+    if (confdir / STATIC).is_dir() and STATIC not in config.html_static_path:
+        config.html_static_path = [*config.html_static_path, STATIC]
+        app.add_css_file(STYLESHEET)
+    if (confdir / SEARCH_SCORER).is_file() and not config.html_search_scorer:
+        # absolute: Sphinx opens it from the working folder, not the configuration's
+        config.html_search_scorer = str(confdir / SEARCH_SCORER)
+
+
+def has_mathematics(doctree):
+    """True when the page has an equation (inline or displayed) for MathJax to typeset."""
+    return doctree is not None and doctree.next_node(
+        lambda node: isinstance(node, (nodes.math, nodes.math_block))) is not None
+
+
+def widget_names(app, pagename, templatename, context, doctree):
+    """``html-page-context`` (before :func:`keep_scripts_once`): on a page with widgets only, the
+    script that names their slider handles and Play buttons, with the names in the book's
+    language as data attributes."""
+    if app.builder.format != "html" or WIDGET_VIEW not in context.get("body", ""):
+        return
+    from sphinx.locale import _
+
+    names = {f"data-{key}": _(label) for key, label in WIDGET_NAMES.items()}
+    app.add_js_file(WIDGET_SCRIPT, defer="defer", **names)
+
+
+def lighter_page(app, pagename, templatename, context, doctree):
+    """``html-page-context``: no MathJax on a page without mathematics or widgets. Sphinx loads
+    it on the root page too when any page of its table of contents has an equation."""
+    if has_mathematics(doctree) or WIDGET_VIEW in context.get("body", ""):
+        return
+    mathjax = app.config.mathjax_path
+    context["script_files"] = [
+        script for script in context.get("script_files", [])
+        if not (mathjax and (script.filename or "").endswith(mathjax))
+        and not (script.attributes.get("body") or "").startswith("window.MathJax")]
+
+
+def accessible_body(app, pagename, templatename, context, doctree):
+    """``html-page-context``: what myst-nb, docutils and pandas write, made accessible.
+
+    - the toggle of a hidden cell is named by its visible text ("Show code cell source"), not
+      by an English aria-label that said something else (axe label-content-name-mismatch);
+    - the bibliography's entries are the items of its list (role="listitem");
+    - an empty table header cell (pandas' top-left corner) is an empty data cell.
+    """
+    body = context.get("body")
+    if not body:
+        return
+    body = body.replace(HIDDEN_CELL_LABEL, "")
+    body = body.replace(CITATION_ENTRY, 'role="listitem"')
+    body = EMPTY_HEADER.sub("<td></td>", body)
+    context["body"] = body
+
+
+def icons_used(html_folder):
+    """The Font Awesome names (without "fa-") in the classes of every page under
+    ``html_folder``, with the icons that scripts add after loading."""
+    names = set(RUNTIME_ICONS)
+    for page in Path(html_folder).rglob("*.html"):
+        names.update(ICON_CLASS.findall(page.read_text(encoding="utf-8", errors="replace")))
+    return names
+
+
+def fontawesome_subset(script, names):
+    """``script`` (the theme's fontawesome.js: Font Awesome Free's JavaScript, every icon) with
+    only the icons called by one of ``names`` (an icon's name or one of its aliases).
+
+    >>> packs = 'var p={a:[1,2,[],"f1","M0"],"b-c":[1,2,[9,"old-b"],"f2","M1"]};'
+    >>> fontawesome_subset(packs, {"old-b"})
+    'var p={"b-c":[1,2,[9,"old-b"],"f2","M1"]};'
+    """
+    pieces, position, pack = [], 0, []
+
+    def close_pack():
+        if pack:
+            kept = [match.group(0) for match in pack if _icon_names(match) & names]
+            pieces.append(",".join(kept))
+
+    previous_end = None
+    for match in FONTAWESOME_ICON.finditer(script):
+        if previous_end is None or script[previous_end:match.start()] != ",":
+            close_pack()
+            pack = []
+            pieces.append(script[position:match.start()])
+        pack.append(match)
+        previous_end = position = match.end()
+    close_pack()
+    pieces.append(script[position:])
+    return "".join(pieces)
+
+
+def _icon_names(match):
+    aliases = re.findall(r'"([a-z0-9-]+)"', match.group(3))
+    return {match.group(1) or match.group(2), *aliases}
+
+
+def subset_fontawesome(app, exception):
+    """``build-finished``: the theme's Font Awesome script (1.5 MB, some 2,000 icons, on every
+    page) replaced by the same script with only the icons the book uses (see the README of
+    book/_vendor for the licence)."""
+    if exception is not None or app.builder.format != "html":
+        return
+    import pydata_sphinx_theme
+
+    original = (Path(pydata_sphinx_theme.__file__).parent / "theme" / "pydata_sphinx_theme"
+                / "static" / "scripts" / "fontawesome.js")
+    target = Path(app.outdir) / "_static" / "scripts" / "fontawesome.js"
+    if not original.is_file() or not target.parent.is_dir():
+        return
+    script = original.read_text(encoding="utf-8")
+    target.write_text(fontawesome_subset(script, icons_used(app.outdir)), encoding="utf-8")
 
 
 def keep_scripts_once(app, pagename, templatename, context, doctree):
@@ -130,8 +291,13 @@ def html_nodes_in_singlehtml(app):
 
 def setup(app):
     app.connect("config-inited", honest_launch_buttons)
+    app.connect("config-inited", add_book_files)
     app.connect("builder-inited", html_nodes_in_singlehtml)
     kernels_over_ipc()
+    app.connect("html-page-context", widget_names, priority=850)
     app.connect("html-page-context", keep_scripts_once, priority=900)
+    app.connect("html-page-context", lighter_page, priority=910)
+    app.connect("html-page-context", accessible_body, priority=920)
     app.connect("build-finished", place_widget_fonts)
+    app.connect("build-finished", subset_fontawesome)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
