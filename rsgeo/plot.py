@@ -8,8 +8,9 @@ import weakref
 
 import numpy as np
 
-from ._i18n import _
+from ._i18n import N_, _, prose_number
 from .errors import GCPError, RsgeoError
+from .figure_language import translate_text
 from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 from .resample import bilinear_weights, keys_weights
 
@@ -209,6 +210,10 @@ def draw_mesh(ax, centroids, labels=None, color="tab:green", edges=True):
     return points
 
 
+# the interpolators' names as a title shows them (marked for the catalogue)
+_METHOD_NAMES = {"bilinear": N_("bilinear"), "cubic": N_("cubic")}
+
+
 def draw_neighbour_weights(ax, position, method):
     """The pixels a bilinear or cubic interpolation uses around a position, sized by their weight.
 
@@ -264,12 +269,14 @@ def draw_neighbour_weights(ax, position, method):
             weight = weights[j, i]
             ax.scatter(*centre, s=2000 * abs(weight),
                        color="tab:red" if weight < 0 else "tab:blue", alpha=0.6)
-            ax.annotate(f"{weight:.2f}", centre, ha="center", va="center", fontsize=8)
+            ax.annotate(format(prose_number(weight), ".2f"), centre, ha="center", va="center",
+                        fontsize=8)
     ax.scatter(col, row, marker="x", color="black", s=80)
     ax.set(xlim=(left - 2.5, left + 4.5), ylim=(top + 4.5, top - 2.5), xlabel=_("column (px)"),
            ylabel=_("row (px)"),
-           title=_("{method}: position ({col:.2f}, {row:.2f})").format(method=method, col=col,
-                                                                       row=row))
+           title=_("{method}: position ({col:.2f}, {row:.2f})").format(
+               method=_(_METHOD_NAMES.get(method, method)), col=prose_number(col),
+               row=prose_number(row)))
     ax.grid(True)
     ax.set_aspect("equal")
 
@@ -348,8 +355,11 @@ def draw_stretch_frame(axes, x_image, y_image, gain, offset, t, title_extra=""):
     artists["line"].set_ydata(gain_t * np.array([0, 255]) + offset_t)
     # y=1: a fixed title position, not re-derived from the tick labels at every frame
     axes[0].set_title(_("t = {t:.1f}: mean Δ {mean:+.1f} DN, spread Δ {spread:+.1f} DN").format(
-        t=t, mean=metrics["mean_difference"], spread=metrics["std_difference"]), y=1.0)
-    axes[2].set_title(f"Y = {gain_t:.3f} X + {offset_t:.2f}{title_extra}", y=1.0)
+        t=prose_number(t), mean=prose_number(metrics["mean_difference"]),
+        spread=prose_number(metrics["std_difference"])), y=1.0)
+    gain_text, offset_text = format(prose_number(gain_t), ".3f"), format(prose_number(offset_t),
+                                                                         ".2f")
+    axes[2].set_title(f"Y = {gain_text} X + {offset_text}{title_extra}", y=1.0)
     return dict(metrics)
 
 
@@ -421,6 +431,12 @@ def animation_html(animation):
     dropped so that the page makes no request outside the book (the book's theme and
     Jupyter already provide Font Awesome, whose ``fa fa-play`` classes the buttons use).
 
+    The player says what it shows: its frame image's ``alt`` is
+    :func:`rsgeo.alt_text.describe_figure` of the first frame, with the number of frames; the
+    frame slider is labelled ("frame"), and every button's ``title`` and ``aria-label`` and
+    the repetition modes' labels are in rsgeo's language (``rsgeo._i18n``: "Play" is
+    "Reproduzir" in Portuguese).
+
     The animation's figure is closed, so that the notebook does not show it a
     second time as a still image.
 
@@ -439,13 +455,77 @@ def animation_html(animation):
     AttributeError
         If ``animation`` is not a matplotlib Animation (nothing is checked
         here); errors while drawing a frame propagate.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import matplotlib.pyplot as plt
+    >>> from matplotlib.animation import FuncAnimation
+    >>> figure, ax = plt.subplots(figsize=(2, 2), dpi=30)
+    >>> line, = ax.plot([], [])
+    >>> _ = ax.set(title="a growing line", xlabel="x (m)", ylabel="y (m)", xlim=(0, 2),
+    ...            ylim=(0, 2))
+    >>> player = animation_html(FuncAnimation(figure, lambda i: line.set_data([0, i], [0, i]),
+    ...                                       frames=3))
+    >>> 'alt="Animation of 3 frames; the first: Figure “a growing line”' in player.data
+    True
+    >>> 'title="Play" aria-label="Play"' in player.data
+    True
     """
+    from html import escape
 
     from IPython.display import HTML
 
-    html = animation.to_jshtml()
-    _pyplot().close(animation._fig)
-    return HTML(re.sub(r"<link[^>]*font-awesome[^>]*>", "", html))
+    from .alt_text import describe_figure
+
+    figure = animation._fig
+    first_frame = {}
+    draw_next_frame = animation._draw_next_frame
+
+    def draw_and_remember_the_first(*args, **kwargs):
+        # the first frame is described once it has been saved (a translation of the figure's
+        # texts, rsgeo.figure_language, happens as a frame is saved), before the second is drawn
+        if first_frame.get("drawn") and "description" not in first_frame:
+            first_frame["description"] = describe_figure(figure)
+        first_frame["drawn"] = True
+        return draw_next_frame(*args, **kwargs)
+
+    own = vars(animation).get("_draw_next_frame")
+    animation._draw_next_frame = draw_and_remember_the_first
+    try:
+        html = animation.to_jshtml()
+    finally:
+        if own is None:
+            del animation._draw_next_frame      # the class's method again
+        else:
+            animation._draw_next_frame = own
+    description = first_frame.get("description") or describe_figure(figure)
+    _pyplot().close(figure)
+    frames = re.search(r"new Array\((\d+)\)", html)
+    alt = _("Animation of {count} frames; the first: {description}").format(
+        count=frames.group(1) if frames else "?", description=description)
+    html = re.sub(r"<link[^>]*font-awesome[^>]*>", "", html)
+    html = re.sub(r'<img id="(_anim_img\w*)"', lambda match: (
+        f'<img id="{match.group(1)}" alt="{escape(alt)}"'), html)
+    slider_name = escape(_("frame"))
+    html = re.sub(r'<input id="(_anim_slider\w*)"', lambda match: (
+        f'<input id="{match.group(1)}" aria-label="{slider_name}"'), html)
+    titles = {"Decrease speed": _("Decrease speed"), "First frame": _("First frame"),
+              "Previous frame": _("Previous frame"), "Play backwards": _("Play backwards"),
+              "Pause": _("Pause"), "Play": _("Play"), "Next frame": _("Next frame"),
+              "Last frame": _("Last frame"), "Increase speed": _("Increase speed"),
+              "Repetition mode": _("Repetition mode")}
+
+    def named(match):
+        title = escape(titles.get(match.group(2), match.group(2)))
+        return f'<{match.group(1)} title="{title}" aria-label="{title}"'
+
+    html = re.sub(r'<(button|form) title="([^"]*)"(?: aria-label="[^"]*")?', named, html)
+    modes = {"Once": _("Once"), "Loop": _("Loop"), "Reflect": _("Reflect")}
+    html = re.sub(r'(<label for="_anim_radio\d_\w*">)(Once|Loop|Reflect)</label>',
+                  lambda match: f"{match.group(1)}{escape(modes[match.group(2)])}</label>", html)
+    return HTML(html)
 
 
 # -- GCP figures (chapters 2 and 3) ------------------------------------------
@@ -534,7 +614,10 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
                        linewidth=0.5)
     from matplotlib import patheffects
 
-    key = ax.quiverkey(arrows, 0.1, 0.04, key_px, f"key: {key_px:g} px, drawn ×{exaggeration:g}",
+    key = ax.quiverkey(arrows, 0.1, 0.04, key_px,
+                       _("key: {length:g} px, drawn ×{exaggeration:g}").format(
+                           length=prose_number(key_px),
+                           exaggeration=prose_number(exaggeration)),
                        labelpos="E", coordinates="axes", color=color, labelcolor="white")
     key.text.set_path_effects([patheffects.withStroke(linewidth=2.5, foreground="black")])
     return arrows
@@ -543,8 +626,9 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
 # -- Tie points (chapter 6c) --------------------------------------------------
 
 # marker colour of each tie-point verdict of rsgeo.tiepoints.correlation_tiepoints.
-_TIEPOINT_COLOURS = {"reliable": "tab:green", "outlier": "tab:red", "weak peak": "tab:orange",
-                    "low contrast": "tab:purple", "constant": "tab:pink", "invalid": "tab:gray"}
+_TIEPOINT_COLOURS = {N_("reliable"): "tab:green", N_("outlier"): "tab:red",
+                     N_("weak peak"): "tab:orange", N_("low contrast"): "tab:purple",
+                     N_("constant"): "tab:pink", N_("invalid"): "tab:gray"}
 
 
 def draw_tiepoints(ax, points, notes, size=30, colours=None):
@@ -586,5 +670,8 @@ def draw_tiepoints(ax, points, notes, size=30, colours=None):
         chosen = notes == verdict
         artists[verdict] = ax.scatter(*points[chosen].T, s=size, edgecolor="black", linewidth=0.5,
                                       color=colours.get(verdict, "tab:blue"),
-                                      label=f"{verdict} ({chosen.sum()})", zorder=3)
+                                      label=_("{verdict} ({count})").format(
+                                          verdict=translate_text(verdict),
+                                          count=int(chosen.sum())),
+                                      zorder=3)
     return artists
