@@ -10,7 +10,7 @@ import numbers
 
 import numpy as np
 
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import CRSError, GCPError, GridError, ImageError, RsgeoError
 
 __all__ = [
@@ -140,9 +140,10 @@ def as_bands_first(image, name="image"):
     """
     shape = np.shape(image)
     if len(shape) == 3 and shape[2] in (3, 4) and min(shape[0], shape[1]) > 4 * shape[2]:
-        raise ImageError(f"{name} has shape {tuple(shape)}, which looks like bands last "
-                         "(rows, cols, bands); rsgeo needs bands first (bands, rows, cols): "
-                         f"pass np.moveaxis({name}, -1, 0)")
+        raise ImageError(_("{name} has shape {shape}, which looks like bands last "
+                           "(rows, cols, bands); rsgeo needs bands first (bands, rows, "
+                           "cols): pass np.moveaxis({name}, -1, 0)").format(
+                name=name, shape=tuple(shape)))
     return image
 
 
@@ -191,12 +192,13 @@ def as_nodata(nodata, dtype):
         info = np.iinfo(dtype)
         if not (math.isfinite(float(nodata)) and float(nodata).is_integer()
                 and info.min <= nodata <= info.max):
-            raise ImageError(f"nodata={nodata!r} does not fit dtype {dtype} "
-                             f"(needs an integer in [{info.min}, {info.max}])")
+            raise ImageError(_("nodata={nodata!r} does not fit dtype {dtype} (needs an "
+                               "integer in [{info_min}, {info_max}])").format(
+                    nodata=nodata, dtype=dtype, info_min=info.min, info_max=info.max))
         return int(nodata)
     if (dtype == np.float32 and math.isfinite(float(nodata))
             and abs(nodata) > np.finfo(np.float32).max):
-        raise ImageError(f"nodata={nodata!r} does not fit dtype float32")
+        raise ImageError(_("nodata={nodata!r} does not fit dtype float32").format(nodata=nodata))
     return nodata
 
 
@@ -250,8 +252,8 @@ def as_shape(shape, name="shape"):
 def _positive_pair(value, name, meaning):
     """``value`` (one number for both, or two) as two finite floats above 0, else GridError
     naming ``name`` and saying what it means."""
-    message = (f"{name} must be one or two finite numbers above 0 ({meaning}), "
-               f"got {value!r}")
+    message = _("{name} must be one or two finite numbers above 0 ({meaning}), got "
+                "{value!r}").format(name=name, meaning=_(meaning), value=value)
     try:
         values = np.asarray(value, dtype=np.float64).ravel()
     except (TypeError, ValueError):
@@ -292,8 +294,8 @@ def as_scale(scale):
     ...
     rsgeo.errors.GridError: scale must be one or two finite numbers above 0 (output pixels per source pixel, xscale and yscale, e.g. 0.125 for 2.5 m taken to 20 m), got (0.5, 0)
     """  # noqa: E501  (a doctest's expected line)
-    return _positive_pair(scale, "scale", "output pixels per source pixel, xscale and yscale, "
-                          "e.g. 0.125 for 2.5 m taken to 20 m")
+    return _positive_pair(scale, "scale", N_("output pixels per source pixel, xscale and "
+                                             "yscale, e.g. 0.125 for 2.5 m taken to 20 m"))
 
 
 def as_resolution(resolution):
@@ -319,8 +321,9 @@ def as_resolution(resolution):
     >>> as_resolution(20)
     (20.0, 20.0)
     """
-    return _positive_pair(resolution, "resolution", "the output pixel size in map units, xres "
-                          "and yres, e.g. 20 for 20 m pixels")
+    return _positive_pair(resolution, "resolution", N_("the output pixel size in map units, "
+                                                       "xres and yres, e.g. 20 for 20 m "
+                                                       "pixels"))
 
 
 def as_num_threads(num_threads):
@@ -359,8 +362,9 @@ def as_num_threads(num_threads):
     except (TypeError, ValueError):
         ok = False
     if not ok:
-        raise RsgeoError(f"num_threads must be a whole number from 1 to {most} (the threads "
-                         f"Numba may use here, NUMBA_NUM_THREADS), got {num_threads!r}")
+        raise RsgeoError(_("num_threads must be a whole number from 1 to {most} (the "
+                           "threads Numba may use here, NUMBA_NUM_THREADS), got "
+                           "{num_threads!r}").format(most=most, num_threads=num_threads))
     return int(num_threads)
 
 
@@ -419,9 +423,9 @@ def as_number(value, name, low=None, high=None, why=""):
         raise RsgeoError(_("{name} must be a finite number, got {value!r}").format(
             name=name, value=value))
     if (low is not None and number < low) or (high is not None and number > high):
-        reason = f" ({why})" if why else ""
-        raise RsgeoError(_("{name} must be {bounds}{reason}, got {value!r}").format(
-            name=name, bounds=_bounds_text(low, high), reason=reason, value=value))
+        raise RsgeoError((_("{name} must be {bounds} ({why}), got {value!r}") if why else
+                          _("{name} must be {bounds}, got {value!r}")).format(
+            name=name, bounds=_bounds_text(low, high), why=_(why), value=value))
     return number
 
 
@@ -688,14 +692,15 @@ def as_crs(crs, name="crs"):
     from rasterio.errors import CRSError as RasterioCRSError
 
     if crs is None:
-        raise CRSError(f"{name} is None; a CRS is needed, e.g. 'EPSG:31983' "
-                       "(SIRGAS 2000 / UTM zone 23S)")
+        raise CRSError(_("{name} is None; a CRS is needed, e.g. 'EPSG:31983' (SIRGAS "
+                         "2000 / UTM zone 23S)").format(name=name))
     if isinstance(crs, CRS):
         return crs
     try:
         value = (CRS.from_epsg(crs) if isinstance(crs, (int, np.integer))
                  else CRS.from_user_input(crs))
     except (RasterioCRSError, TypeError, ValueError) as error:
-        raise CRSError(f"{name} {crs!r} is not a CRS that PROJ knows ({error}); give an EPSG "
-                       "code such as 'EPSG:31983', a WKT or a PROJ string") from None
+        raise CRSError(_("{name} {crs!r} is not a CRS that PROJ knows ({error}); give "
+                         "an EPSG code such as 'EPSG:31983', a WKT or a PROJ string").format(
+                name=name, crs=crs, error=error)) from None
     return value

@@ -16,6 +16,10 @@ names, arguments and the values a message quotes are never translated.
 Format strings are translated before they are filled, so that a translation can move the fields::
 
     _("order {order} needs at least {n} GCPs, got {got}").format(order=2, n=6, got=4)
+
+A number a message shows in prose (not in a code span) is passed as :func:`prose_number`, which
+writes it the way the language does: ``22.5`` and ``50,000`` in English, ``22,5`` and ``50.000``
+in Portuguese. Values quoted as code (``{value!r}``, inside backticks) keep Python's point.
 """
 
 import functools
@@ -26,7 +30,7 @@ from pathlib import Path
 from .errors import RsgeoError
 
 __all__ = ["LANGUAGES", "ENVIRONMENT_VARIABLE", "LOCALE_DIR", "VERDICT_LABELS", "get_language",
-           "set_language", "translate", "_", "N_"]
+           "set_language", "translate", "_", "N_", "prose_number"]
 
 #: The languages rsgeo speaks; the first is the language of the code and the default.
 LANGUAGES = ("en", "pt_BR")
@@ -159,6 +163,60 @@ def translate(message, language=None):
 
 
 _ = translate
+
+
+class _Number:
+    """A number that formats with the decimal and thousands separators of the language."""
+
+    __slots__ = ("value",)
+
+    def __init__(self, value):
+        self.value = value
+
+    def __format__(self, spec):
+        text = format(self.value, spec)
+        if get_language() == "pt_BR":
+            text = text.translate(_PORTUGUESE_SEPARATORS)
+        return text
+
+    def __str__(self):
+        return format(self, "")
+
+    def __repr__(self):
+        return repr(self.value)
+
+
+_PORTUGUESE_SEPARATORS = str.maketrans({".": ",", ",": "."})
+
+
+def prose_number(value):
+    """``value`` for a message's ``{field}``: formatted with the language's separators.
+
+    Parameters
+    ----------
+    value : int or float
+        A number a message shows in prose, with any format spec (``{value:.2f}``,
+        ``{scale:,.0f}``).
+
+    Returns
+    -------
+    object
+        A wrapper whose ``format`` gives a decimal comma and a thousands point when the
+        language is ``pt_BR``, Python's point and comma otherwise.
+
+    Examples
+    --------
+    >>> from rsgeo._i18n import prose_number, set_language
+    >>> set_language("pt_BR")
+    'pt_BR'
+    >>> "{:.2f} m, 1:{:,.0f}".format(prose_number(22.514), prose_number(50000))
+    '22,51 m, 1:50.000'
+    >>> set_language("en")
+    'en'
+    >>> "{:.2f} m, 1:{:,.0f}".format(prose_number(22.514), prose_number(50000))
+    '22.51 m, 1:50,000'
+    """
+    return _Number(value)
 
 
 def N_(message):

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._checks import as_integer, as_number, as_points, as_shape, check_choice
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import GCPError, GridError, ModelError
 from .transforms import (
     GEOREFERENCER_MODELS,
@@ -65,23 +65,27 @@ __all__ = [
 ]
 
 
-def _pair(src, dst, what="GCPs"):
+def _pair(src, dst):
     """src and dst as (n, 2) arrays of the same length."""
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
     if len(src) != len(dst):
-        raise GCPError(f"src and dst must hold the same {what}, got {len(src)} and {len(dst)} "
-                       "points")
+        raise GCPError(_("src and dst must hold the same GCPs, got {n_src} and {n_dst} "
+                         "points").format(n_src=len(src), n_dst=len(dst)))
     return src, dst
 
 
-def _predicted_observed(predicted, observed, note=""):
-    """predicted and observed as (n, 2) arrays of the same shape (``note`` adds to the message)."""
+def _predicted_observed(predicted, observed, per_gcp=False):
+    """predicted and observed as (n, 2) arrays of the same shape (``per_gcp``: the message says
+    one row per GCP)."""
     predicted = as_points(predicted, "predicted")
     observed = as_points(observed, "observed")
     if predicted.shape != observed.shape:
-        raise GCPError(f"predicted and observed must have the same shape{note}, got "
-                       f"{predicted.shape} and {observed.shape}")
+        raise GCPError((_("predicted and observed must have the same shape (one row per GCP), "
+                          "got {predicted_shape} and {observed_shape}") if per_gcp else
+                        _("predicted and observed must have the same shape, got "
+                          "{predicted_shape} and {observed_shape}")).format(
+                predicted_shape=predicted.shape, observed_shape=observed.shape))
     return predicted, observed
 
 
@@ -92,10 +96,13 @@ def _as_flags(flags, name):
         try:
             numbers = array.astype(np.float64)
         except (TypeError, ValueError):
-            raise GCPError(f"{name} must hold True/False (or 1/0) flags, got {flags!r}") from None
+            raise GCPError(_("{name} must hold True/False (or 1/0) flags, got {flags!r}").format(
+                    name=name, flags=flags)) from None
         if not np.isin(numbers, (0.0, 1.0)).all():
-            raise GCPError(f"{name} must hold True/False (or 1/0) flags, got values "
-                           f"{np.unique(numbers[~np.isin(numbers, (0.0, 1.0))])[:5].tolist()}")
+            raise GCPError(_("{name} must hold True/False (or 1/0) flags, got values "
+                             "{tolist}").format(
+                    name=name,
+                    tolist=np.unique(numbers[~np.isin(numbers, (0.0, 1.0))])[:5].tolist()))
         array = numbers.astype(bool)
     return array
 
@@ -198,11 +205,12 @@ def mean_error(predicted, observed, order, kind=None):
     >>> mean_error([[0, 0], [3, 4], [0, 0], [0, 0]], np.zeros((4, 2)), 1)
     5.0
     """
-    predicted, observed = _predicted_observed(predicted, observed, " (one row per GCP)")
+    predicted, observed = _predicted_observed(predicted, observed, per_gcp=True)
     entry = _registered(order, kind, "mean_error")
     n, m = len(predicted), entry.min_gcps
     if n <= m:
-        raise GCPError(f"the mean error of {_describe(entry)} needs more than {m} GCPs, got {n}")
+        raise GCPError(_("the mean error of {describe} needs more than {m} GCPs, got {n}").format(
+                describe=_describe(entry), m=m, n=n))
     return float(np.sqrt(np.sum((predicted - observed) ** 2) / (n - m)))
 
 
@@ -216,7 +224,8 @@ def _registered(order, kind, caller):
 
 def _describe(entry):
     """'order 2' for a polynomial, "'helmert'" for the other kinds, as the messages name them."""
-    return f"order {entry.order}" if entry.kind == "polynomial" else repr(entry.kind)
+    return (_("order {order}").format(order=entry.order) if entry.kind == "polynomial"
+            else repr(entry.kind))
 
 
 # --- Errors of GCPs the model was not fitted to --------------------------------------------------
@@ -309,10 +318,13 @@ def _left_out_differences(src, dst, order, kind, caller):
     needed = entry.min_gcps + 1
     if len(src) < needed:
         if entry.kind == "polynomial":
-            raise GCPError(f"leave-one-out for order {entry.order} needs at least {needed} GCPs "
-                           f"(the minimum {needed - 1} once one is left out), got {len(src)}")
-        raise GCPError(f"leave-one-out needs at least {needed} GCPs for this model "
-                       f"(one more than its minimum), got {len(src)}")
+            raise GCPError(_("leave-one-out for order {entry_order} needs at least "
+                             "{needed} GCPs (the minimum {value} once one is left out), "
+                             "got {n_src}").format(
+                    entry_order=entry.order, needed=needed, value=needed - 1, n_src=len(src)))
+        raise GCPError(_("leave-one-out needs at least {needed} GCPs for this model "
+                         "(one more than its minimum), got {n_src}").format(
+                needed=needed, n_src=len(src)))
     difference = np.empty((len(src), 2))
     for index in range(len(src)):
         others = np.arange(len(src)) != index
@@ -365,10 +377,11 @@ def fit_with_check_points(src, dst, order, is_check, kind=None):
     dst = as_points(dst, "dst")
     is_check = _as_flags(is_check, "is_check")
     if is_check.shape != (len(src),):
-        raise GCPError(f"is_check must have one flag per GCP ({len(src)}), got shape "
-                       f"{is_check.shape}")
+        raise GCPError(_("is_check must have one flag per GCP ({n_src}), got shape "
+                         "{is_check_shape}").format(
+                n_src=len(src), is_check_shape=is_check.shape))
     if not is_check.any():
-        raise GCPError("is_check marks no check point; mark at least one GCP as a check point")
+        raise GCPError(_("is_check marks no check point; mark at least one GCP as a check point"))
     entry = _registered(order, kind, "fit_with_check_points")
     model = fit_transform(src[~is_check], dst[~is_check], entry.kind, entry.order)
     fit_rms = model.rms(src[~is_check], dst[~is_check])
@@ -432,18 +445,20 @@ def refine_gcps(src, dst, order, tolerance, min_gcps=None, kind=None):
     entry = _registered(order, kind, "refine_gcps")
     floor = entry.min_gcps
     tolerance = as_number(tolerance, "tolerance", low=0,
-                          why="the residual, in dst units, from which a GCP is dropped")
+                          why=N_("the residual, in dst units, from which a GCP is dropped"))
     min_gcps = floor if min_gcps is None else as_integer(min_gcps, "min_gcps")
     if min_gcps < floor:
-        raise GCPError(f"min_gcps must be at least {floor} for {_describe(entry)}, "
-                       f"got {min_gcps}")
+        raise GCPError(_("min_gcps must be at least {floor} for {describe}, got "
+                         "{min_gcps}").format(
+                floor=floor, describe=_describe(entry), min_gcps=min_gcps))
     if min_gcps > len(src):
-        raise GCPError(f"min_gcps ({min_gcps}) exceeds the number of GCPs ({len(src)}); "
-                       "it must be between the order's minimum and the number of GCPs")
+        raise GCPError(_("min_gcps ({min_gcps}) exceeds the number of GCPs ({n_src}); "
+                         "it must be between the order's minimum and the number of GCPs").format(
+                min_gcps=min_gcps, n_src=len(src)))
     kept = np.ones(len(src), dtype=bool)
     model = fit_transform(src, dst, entry.kind, entry.order)
     while kept.sum() > min_gcps:
-        _, _, distance = residuals(model, src[kept], dst[kept])
+        distance = residuals(model, src[kept], dst[kept])[2]
         # Residuals below float32's epsilon count as zero, as in GDAL.
         distance = np.where(distance < np.finfo(np.float32).eps, 0.0, distance)
         worst = int(np.argmax(distance))
@@ -501,8 +516,8 @@ def coefficient_standard_errors(model):
            [0.283, 0.063, 0.063]])
     """
     if not isinstance(model, PolynomialModel):
-        raise TypeError(f"model must be a PolynomialModel (from fit_polynomial), got "
-                        f"{type(model).__name__}")
+        raise TypeError(_("model must be a PolynomialModel (from fit_polynomial), got "
+                          "{kind}").format(kind=type(model).__name__))
     return model.standard_errors()
 
 
@@ -556,10 +571,11 @@ def hull_coverage(points, width, height):
     from scipy.spatial import ConvexHull, QhullError
 
     points = as_points(points)
-    width = as_number(width, "width", low=0, why="the image's width in pixels")
-    height = as_number(height, "height", low=0, why="the image's height in pixels")
+    width = as_number(width, "width", low=0, why=N_("the image's width in pixels"))
+    height = as_number(height, "height", low=0, why=N_("the image's height in pixels"))
     if width == 0 or height == 0:
-        raise GridError(f"width and height must be positive (pixels), got {width} and {height}")
+        raise GridError(_("width and height must be positive (pixels), got {width} and "
+                          "{height}").format(width=width, height=height))
     clipped = np.clip(points, [0, 0], [width, height])
     try:
         area = ConvexHull(clipped).volume
@@ -625,26 +641,28 @@ def predicted_error_map(src, order, x, y, gcp_error=1.0, kind=None, dst=None):
     >>> predicted_error_map(src, "helmert", x, y).round(3)
     array([0.5  , 1.581])
     """
-    gcp_error = as_number(gcp_error, "gcp_error", low=0, why="a standard deviation in dst units")
+    gcp_error = as_number(gcp_error, "gcp_error", low=0,
+                          why=N_("a standard deviation in dst units"))
     if np.shape(x) != np.shape(y):
-        raise GridError(f"x and y must have the same shape, got {np.shape(x)} and {np.shape(y)}")
+        raise GridError(_("x and y must have the same shape, got {x_shape} and {y_shape}").format(
+                x_shape=np.shape(x), y_shape=np.shape(y)))
     src = as_points(src, "src")
     entry = _registered(order, kind, "predicted_error_map")
     grid = np.column_stack([np.ravel(x), np.ravel(y)])
     if entry.kind != "polynomial":
         if entry.kind == "projective" and dst is None:
-            raise GCPError("a 'projective' model's predicted error depends on where its GCPs go: "
-                           "pass dst, the GCPs' dst positions")
+            raise GCPError(_("a 'projective' model's predicted error depends on where its GCPs "
+                             "go: pass dst, the GCPs' dst positions"))
         dst = None if dst is None else _pair(src, dst)[1]
         deviation = _propagated_deviation(entry.fit, src, grid, dst)
         return (gcp_error * deviation).reshape(np.shape(x))
     order = entry.order
     matrix, origin, scale = _normalised_design(src, order)
     if np.linalg.matrix_rank(matrix) < matrix.shape[1]:
-        raise GCPError(f"the GCPs do not determine an order-{order} polynomial (collinear or "
-                       "too few)")
+        raise GCPError(_("the GCPs do not determine an order-{order} polynomial "
+                         "(collinear or too few)").format(order=order))
     normal_inverse = np.linalg.inv(matrix.T @ matrix)
-    terms, _, _ = _normalised_design(grid, order, origin, scale)
+    terms = _normalised_design(grid, order, origin, scale)[0]
     variance = np.einsum("ij,jk,ik->i", terms, normal_inverse, terms)
     return (gcp_error * np.sqrt(variance)).reshape(np.shape(x))
 
@@ -715,7 +733,8 @@ def compare_models(src, dst, is_check=None, models=GEOREFERENCER_MODELS):
     src, dst = _same_points(src, dst)
     check = np.zeros(len(src), bool) if is_check is None else _as_flags(is_check, "is_check")
     if check.shape != (len(src),):
-        raise GCPError(f"is_check needs one flag per point ({len(src)}), got shape {check.shape}")
+        raise GCPError(_("is_check needs one flag per point ({n_src}), got shape "
+                         "{check_shape}").format(n_src=len(src), check_shape=check.shape))
     fit_src, fit_dst = src[~check], dst[~check]
     rows = {}
     for label, kind, order in models:
@@ -742,11 +761,11 @@ def _check_transform(transform, name):
     try:
         determinant = transform.a * transform.e - transform.b * transform.d
     except AttributeError:
-        raise GridError(f"{name} must be an affine.Affine geotransform (pixel -> map), "
-                        f"got {type(transform).__name__}") from None
+        raise GridError(_("{name} must be an affine.Affine geotransform (pixel -> map), "
+                          "got {kind}").format(name=name, kind=type(transform).__name__)) from None
     if not np.isfinite(determinant) or determinant == 0:
-        raise GridError(f"{name} cannot be inverted (its pixel axes are degenerate): "
-                        f"{transform!r}")
+        raise GridError(_("{name} cannot be inverted (its pixel axes are degenerate): "
+                          "{transform!r}").format(name=name, transform=transform))
     return transform
 
 
@@ -830,14 +849,15 @@ def compare_with_geotransform(model, transform, shape, step=1):
     transform = _check_transform(transform, "transform")
     rows, cols = as_shape(shape)
     if int(step) != step or step < 1:
-        raise GridError(f"step must be a positive whole number of pixels, got {step!r}")
+        raise GridError(_("step must be a positive whole number of pixels, got {step!r}").format(
+                step=step))
     grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
     points = np.column_stack([grid_cols.ravel(), grid_rows.ravel()])
     map_xy = np.column_stack(transform @ (points[:, 0], points[:, 1]))
     predicted = np.asarray(model(map_xy), dtype=np.float64)
     if predicted.shape != points.shape or not np.isfinite(predicted).all():
-        raise ModelError(f"model must return finite (n, 2) image positions, got shape "
-                         f"{predicted.shape}")
+        raise ModelError(_("model must return finite (n, 2) image positions, got shape "
+                           "{predicted_shape}").format(predicted_shape=predicted.shape))
     differences = predicted - points
     lengths = np.hypot(differences[:, 0], differences[:, 1])
     mean_offset = differences.mean(axis=0)
@@ -883,7 +903,7 @@ NSSDA_95_RADIAL_FACTOR = 1.7308
 def _as_scale(scale):
     """The scale's denominator as a number (25000 for 1:25,000)."""
     return as_number(scale, "scale", low=1,
-                     why=_("the scale's denominator: 25000 for 1:25,000"))
+                     why=N_("the scale's denominator: 25000 for 1:25,000"))
 
 
 def _as_standard(standard):

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ._checks import as_number, as_points, as_shape
+from ._i18n import N_, _, prose_number
 from .errors import GridError, ModelError, RsgeoError
 from .resample import grid_positions, interpolate
 from .transforms import GeometricModel, InverseModel
@@ -55,7 +56,7 @@ def orbital_rate(altitude_km):
     Kepler's third law for a circular orbit, GM = 398600.4418 km³/s².
     """
     altitude_km = as_number(altitude_km, "altitude_km", low=1e-9,
-                              why="the satellite flies above the ground")
+                              why=N_("the satellite flies above the ground"))
     return float(np.sqrt(GM_KM3_S2 / (EARTH_RADIUS_KM + altitude_km) ** 3))
 
 
@@ -105,13 +106,15 @@ def track_angle(latitude_deg, inclination_deg=98.2):
     Richards, J. A. and Jia, X. (2006), *Remote Sensing Digital Image
     Analysis*, 4th ed., Springer, ch. 2 (geometric distortion).
     """
-    latitude = np.radians(as_number(latitude_deg, "latitude_deg", -90, 90, "a latitude"))
+    latitude = np.radians(as_number(latitude_deg, "latitude_deg", -90, 90, N_("a latitude")))
     inclination = np.radians(as_number(inclination_deg, "inclination_deg", 0, 180))
     sine = abs(np.cos(inclination)) / np.cos(latitude) if np.cos(latitude) > 0 else np.inf
     if sine > 1:
         reach = 90 - abs(90 - np.degrees(inclination))
-        raise RsgeoError(f"an orbit inclined {inclination_deg}° never passes over latitude "
-                         f"{latitude_deg}° (it reaches ±{reach:.1f}°)")
+        raise RsgeoError(_("an orbit inclined {inclination_deg}° never passes over "
+                           "latitude {latitude_deg}° (it reaches ±{reach:.1f}°)").format(
+                inclination_deg=inclination_deg, latitude_deg=latitude_deg,
+                reach=prose_number(reach)))
     return float(np.degrees(np.arcsin(sine)))
 
 
@@ -120,9 +123,10 @@ PASS_DIRECTIONS = ("descending", "ascending")
 
 def _check_pass(pass_direction):
     if pass_direction not in PASS_DIRECTIONS:
-        raise RsgeoError(f"pass_direction must be 'descending' (north to south, the daytime pass "
-                         f"of Landsat and CBERS) or 'ascending' (south to north), got "
-                         f"{pass_direction!r}")
+        raise RsgeoError(_("pass_direction must be 'descending' (north to south, the "
+                           "daytime pass of Landsat and CBERS) or 'ascending' (south to "
+                           "north), got {pass_direction!r}").format(
+                pass_direction=pass_direction))
     return pass_direction
 
 
@@ -189,7 +193,7 @@ def earth_rotation_skew(latitude_deg, frame_length_km=185.0, altitude_km=705.0,
     True
     """
     _check_pass(pass_direction)
-    as_number(frame_length_km, "frame_length_km", low=0, why="a length")
+    as_number(frame_length_km, "frame_length_km", low=0, why=N_("a length"))
     zeta = np.radians(track_angle(latitude_deg, inclination_deg))
     imaging_time = frame_length_km / ground_track_speed(altitude_km)
     surface_speed = EARTH_ROTATION_RAD_S * EQUATORIAL_RADIUS_KM * np.cos(np.radians(latitude_deg))
@@ -277,7 +281,7 @@ def frame_outline(latitude_deg, frame_length_km, width_km, altitude_km=705.0, in
     >>> round(float(np.hypot(east[2] - east[1], north[2] - north[1])), 1)   # along-track side
     185.0
     """
-    as_number(width_km, "width_km", low=0, why="a width")
+    as_number(width_km, "width_km", low=0, why=N_("a width"))
     offset = np.array(earth_rotation_offset(latitude_deg, frame_length_km, altitude_km,
                                             inclination_deg,
                                             pass_direction))
@@ -329,8 +333,9 @@ def skew_per_line(latitude_deg, lines, pixel_size_km, altitude_km=705.0, inclina
     0.0681
     """
     if int(lines) != lines or lines < 1:
-        raise RsgeoError(f"lines must be a positive whole number, got {lines!r}")
-    as_number(pixel_size_km, "pixel_size_km", low=1e-12, why="a size")
+        raise RsgeoError(_("lines must be a positive whole number, got {lines!r}").format(
+                lines=lines))
+    as_number(pixel_size_km, "pixel_size_km", low=1e-12, why=N_("a size"))
     offset_km = earth_rotation_skew(latitude_deg, lines * pixel_size_km, altitude_km,
                                     inclination_deg,
                                     pass_direction)
@@ -368,13 +373,16 @@ def skew_angle(latitude_deg, altitude_km=705.0, inclination_deg=98.2):
 
 def _check_scan(scan_angle_deg, altitude_km):
     theta = np.radians(np.asarray(scan_angle_deg, dtype=np.float64))
-    as_number(altitude_km, "altitude_km", low=1e-9, why="the satellite flies above the ground")
+    as_number(altitude_km, "altitude_km", low=1e-9, why=N_("the satellite flies above the ground"))
     if not np.isfinite(theta).all():
-        raise RsgeoError("scan_angle_deg must be finite")
+        raise RsgeoError(_("scan_angle_deg must be finite"))
     horizon = np.arcsin(EARTH_RADIUS_KM / (EARTH_RADIUS_KM + altitude_km))
     if np.any(np.abs(theta) >= horizon):
-        raise ModelError(f"scan angle {np.degrees(np.max(np.abs(theta))):.2f}° is beyond the "
-                         f"horizon, which is at {np.degrees(horizon):.2f}° from {altitude_km} km")
+        raise ModelError(_("scan angle {degrees:.2f}° is beyond the horizon, which is "
+                           "at {degrees2:.2f}° from {altitude_km:g} km").format(
+                degrees=prose_number(np.degrees(np.max(np.abs(theta)))),
+                degrees2=prose_number(np.degrees(horizon)),
+                altitude_km=prose_number(altitude_km)))
     return theta
 
 
@@ -520,7 +528,7 @@ def pixel_size(scan_angle_deg, altitude_km, nadir_pixel_km=1.0, curved_earth=Tru
     >>> round(float(along), 2), round(float(across), 2)
     (2.01, 4.83)
     """
-    as_number(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
+    as_number(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why=N_("a size"))
     theta = _check_scan(scan_angle_deg, altitude_km)
     ifov = nadir_pixel_km / altitude_km
     if not curved_earth:
@@ -618,17 +626,19 @@ def _ground_point(altitude_km, theta, psi=0.0, epsilon=0.0, curved_earth=True):
     ux, uy, uz = _look_vector(theta, psi, epsilon)
     if not curved_earth:
         if np.any(uz >= 0):
-            raise ModelError("the look direction does not reach a flat ground "
-                             "(it points at or above the horizon)")
+            raise ModelError(_("the look direction does not reach a flat ground (it points at "
+                               "or above the horizon)"))
         t = altitude_km / -uz
         return t * ux, t * uy, np.zeros_like(t)
     height = EARTH_RADIUS_KM + altitude_km
     b = height * -uz
     disc = b ** 2 - (height ** 2 - EARTH_RADIUS_KM ** 2)
     if np.any(disc < 0) or np.any(b <= 0):
-        raise ModelError("the look direction misses the Earth: scan plus roll angle is beyond the "
-                         f"horizon ({np.degrees(np.arcsin(EARTH_RADIUS_KM / height)):.2f}° from "
-                         f"{altitude_km} km)")
+        raise ModelError(_("the look direction misses the Earth: scan plus roll angle "
+                           "is beyond the horizon ({degrees:.2f}° from {altitude_km:g} "
+                           "km)").format(
+                degrees=prose_number(np.degrees(np.arcsin(EARTH_RADIUS_KM / height))),
+                altitude_km=prose_number(altitude_km)))
     t = b - np.sqrt(disc)
     return t * ux, t * uy, height + t * uz
 
@@ -693,7 +703,7 @@ def attitude_displacement(angle_deg, altitude_km, curved_earth=True, scan_angle_
     3.75
     """
     if axis not in ("roll", "pitch"):
-        raise RsgeoError(f"axis must be 'roll' or 'pitch', got {axis!r}")
+        raise RsgeoError(_("axis must be 'roll' or 'pitch', got {axis!r}").format(axis=axis))
     angle = np.asarray(angle_deg, dtype=np.float64)
     scan = np.asarray(scan_angle_deg, dtype=np.float64)
     if axis == "roll":
@@ -741,8 +751,9 @@ def scan_footprint(scan_angle_deg, altitude_km, detectors=10, nadir_pixel_km=1.0
     (10.0, 20.1)
     """
     if int(detectors) != detectors or detectors < 1:
-        raise RsgeoError(f"detectors must be a positive whole number, got {detectors!r}")
-    as_number(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why="a size")
+        raise RsgeoError(_("detectors must be a positive whole number, got {detectors!r}").format(
+                detectors=detectors))
+    as_number(nadir_pixel_km, "nadir_pixel_km", low=1e-12, why=N_("a size"))
     theta = _check_scan(scan_angle_deg, altitude_km)
     half = detectors * nadir_pixel_km / altitude_km / 2
     first = _ground_point(altitude_km, theta, epsilon=-half, curved_earth=curved_earth)
@@ -908,16 +919,16 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
     shape: tuple = None
 
     def __post_init__(self):
-        as_number(self.scale, "scale", low=1e-6, why="a ratio of altitudes")
+        as_number(self.scale, "scale", low=1e-6, why=N_("a ratio of altitudes"))
         if self.shape is not None:
             self.shape = as_shape(self.shape)
         if (self.view_altitude_km is None) != (self.nadir_pixel_km is None):
-            raise RsgeoError("view_altitude_km and nadir_pixel_km go together: "
-                             "give both or neither")
+            raise RsgeoError(_("view_altitude_km and nadir_pixel_km go together: give both or "
+                               "neither"))
         if self.view_altitude_km is None and (self.roll_deg or self.pitch_deg):
-            raise RsgeoError("roll_deg and pitch_deg need view_altitude_km and nadir_pixel_km (an "
-                             "angle moves the ground by an amount that depends on the altitude); "
-                             "without them give roll_px and pitch_px")
+            raise RsgeoError(_("roll_deg and pitch_deg need view_altitude_km and nadir_pixel_km "
+                               "(an angle moves the ground by an amount that depends on the "
+                               "altitude); without them give roll_px and pitch_px"))
 
     @property
     def _ifov(self):
@@ -932,7 +943,7 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
             Radians.
         """
         if self.view_altitude_km is None:
-            raise RsgeoError("attitude in radians needs view_altitude_km and nadir_pixel_km")
+            raise RsgeoError(_("attitude in radians needs view_altitude_km and nadir_pixel_km"))
         return (np.radians(self.roll_deg) + self.roll_px * self._ifov,
                 np.radians(self.pitch_deg) + self.pitch_px * self._ifov)
 
@@ -969,8 +980,8 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
         0.01
         """
         if self.view_altitude_km is None:
-            raise RsgeoError("knowledge errors need view_altitude_km and nadir_pixel_km: the "
-                             "altitude turns angles and positions into pixels")
+            raise RsgeoError(_("knowledge errors need view_altitude_km and nadir_pixel_km: the "
+                               "altitude turns angles and positions into pixels"))
         height = self.view_altitude_km
         return replace(self,
                        roll_deg=float(self.roll_deg + roll_deg + np.degrees(across_km / height)),
@@ -1002,8 +1013,8 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
 
     def _grid(self):
         if self.shape is None:
-            raise GridError("a SystematicDistortion maps points on a grid whose centre is nadir: "
-                            "give shape=(rows, cols), or use distortion.on_grid(shape)")
+            raise GridError(_("a SystematicDistortion maps points on a grid whose centre is "
+                              "nadir: give shape=(rows, cols), or use distortion.on_grid(shape)"))
         return self.shape
 
     def __call__(self, points):
@@ -1121,12 +1132,15 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
                 index = np.flatnonzero(np.ravel(wrong))[0]
                 first = [float(np.ravel(image_c)[index]), float(np.ravel(image_r)[index])]
                 raise ModelError(
-                    f"{int(wrong.sum())} of {wrong.size} recorded points (first: {first}) have "
-                    "no single true position: the inverse did not converge, or several true "
-                    f"positions map there. A yaw rate of {self.yaw_rate_deg_per_line}°/line "
-                    "turns the lines so fast that the grid folds over itself beyond "
-                    f"{1 / max(abs(rate), 1e-300):.3g} px from nadir; use a smaller rate or "
-                    "points nearer nadir")
+                    _("{value} of {wrong_size} recorded points (first: {first}) have no "
+                      "single true position: the inverse did not converge, or several "
+                      "true positions map there. A yaw rate of "
+                      "{yaw_rate_deg_per_line}°/line turns the lines so fast that the "
+                      "grid folds over itself beyond {value2:.3g} px from nadir; use a "
+                      "smaller rate or points nearer nadir").format(
+                        value=int(wrong.sum()), wrong_size=wrong.size, first=first,
+                        yaw_rate_deg_per_line=self.yaw_rate_deg_per_line,
+                        value2=prose_number(1 / max(abs(rate), 1e-300))))
             c_true, r_true = np.where(wrong, np.nan, c_true), np.where(wrong, np.nan, r_true)
         return c_true, r_true
 
@@ -1160,11 +1174,12 @@ def _yaw_roots(c_rot, r_rot, yaw, rate):
 def _on_image_grid(distortion, shape):
     """``distortion`` on the image's grid; refuse a distortion set for another grid."""
     if not isinstance(distortion, SystematicDistortion):
-        raise TypeError(f"distortion must be a SystematicDistortion, got "
-                        f"{type(distortion).__name__}")
+        raise TypeError(_("distortion must be a SystematicDistortion, got {kind}").format(
+                kind=type(distortion).__name__))
     if distortion.shape is not None and tuple(distortion.shape) != tuple(shape):
-        raise GridError(f"the distortion is set on a {distortion.shape} grid but the image is "
-                        f"{tuple(shape)}; use distortion.on_grid(image.shape[-2:])")
+        raise GridError(_("the distortion is set on a {distortion_shape} grid but the "
+                          "image is {shape}; use distortion.on_grid(image.shape[-2:])").format(
+                distortion_shape=distortion.shape, shape=tuple(shape)))
     return distortion.on_grid(shape)
 
 

@@ -79,18 +79,18 @@ class GCPSet:  # numpydoc ignore=PR02
         self.image_xy = np.array(as_points(self.image_xy, "image_xy"))
         n = len(self.map_xy)
         if len(self.image_xy) != n:
-            raise GCPError(f"map_xy and image_xy must hold the same GCPs, got {n} and "
-                           f"{len(self.image_xy)}")
+            raise GCPError(_("map_xy and image_xy must hold the same GCPs, got {n} and "
+                             "{n_values}").format(n=n, n_values=len(self.image_xy)))
         self.enabled = (np.ones(n, bool) if self.enabled is None
                         else np.array(_as_flags(self.enabled, "enabled")))
         if self.enabled.shape != (n,):
-            raise GCPError(f"enabled must have one flag per GCP ({n}), got shape "
-                           f"{self.enabled.shape}")
+            raise GCPError(_("enabled must have one flag per GCP ({n}), got shape "
+                             "{shape}").format(n=n, shape=self.enabled.shape))
         self.ids = ([str(i + 1) for i in range(n)] if self.ids is None
                     else [str(i) for i in self.ids])
         self.notes = [""] * n if self.notes is None else [str(note) for note in self.notes]
         if len(self.ids) != n or len(self.notes) != n:
-            raise GCPError(f"ids and notes must have one entry per GCP ({n})")
+            raise GCPError(_("ids and notes must have one entry per GCP ({n})").format(n=n))
 
     def __len__(self):
         return len(self.map_xy)
@@ -149,8 +149,8 @@ class GCPSet:  # numpydoc ignore=PR02
         from ._proj import transformer  # georef's PROJ, not GDAL's: it finds the grids
 
         if self.crs is None:
-            raise CRSError("these GCPs have no CRS (crs=None): set the CRS their map "
-                             "coordinates are in before transforming them")
+            raise CRSError(_("these GCPs have no CRS (crs=None): set the CRS their map "
+                             "coordinates are in before transforming them"))
         source, target = _as_crs(self.crs, "the GCPs' crs"), _as_crs(crs, "crs")
         xs, ys = transformer(source.to_wkt(version="WKT2_2019"),
                              target.to_wkt(version="WKT2_2019")).transform(
@@ -179,12 +179,14 @@ class GCPSet:  # numpydoc ignore=PR02
             If ``other`` is not a GCPSet.
         """
         if not isinstance(other, GCPSet):
-            raise TypeError(f"other must be a GCPSet, got {type(other).__name__}")
+            raise TypeError(_("other must be a GCPSet, got {kind}").format(
+                    kind=type(other).__name__))
         if (self.crs is None) != (other.crs is None) or (
                 self.crs is not None and _as_crs(self.crs) != _as_crs(other.crs)):
             names = [_crs_name(self.crs), _crs_name(other.crs)]
-            raise CRSError(f"cannot mix GCPs in {names[0]} with GCPs in {names[1]}: "
-                             "transform one set with .to_crs() first")
+            raise CRSError(_("cannot mix GCPs in {value} with GCPs in {value2}: "
+                             "transform one set with .to_crs() first").format(
+                    value=names[0], value2=names[1]))
         return GCPSet(np.vstack([self.map_xy, other.map_xy]),
                       np.vstack([self.image_xy, other.image_xy]),
                       np.concatenate([self.enabled, other.enabled]),
@@ -243,8 +245,9 @@ def _as_crs(crs, name="crs"):
             return CRS.from_epsg(crs)
         return CRS.from_user_input(crs)
     except (RasterioCRSError, TypeError, ValueError) as error:
-        raise CRSError(f"{name} {str(crs)[:60]!r} is not a CRS that PROJ knows ({error}); give "
-                       "an EPSG code such as 'EPSG:31983', a WKT or a PROJ string") from None
+        raise CRSError(_("{name} {value!r} is not a CRS that PROJ knows ({error}); give "
+                         "an EPSG code such as 'EPSG:31983', a WKT or a PROJ string").format(
+                name=name, value=str(crs)[:60], error=error)) from None
 
 
 def _crs_name(crs):
@@ -318,7 +321,8 @@ def read_points(path):
         crs = lines.pop(0)[len("#CRS:"):].strip() or None
     lines = [line for line in lines if line.strip() and not line.startswith("#")]
     if not lines:
-        raise DataError(f"{path}: no header and no GCPs; a .points file needs a header line")
+        raise DataError(_("{path}: no header and no GCPs; a .points file needs a header "
+                          "line").format(path=path))
     delimiter = "\t" if "\t" in lines[0] else ","
     reader = csv.DictReader(io.StringIO("\n".join(lines)), delimiter=delimiter)
     header = [name.strip() for name in reader.fieldnames]
@@ -327,16 +331,17 @@ def read_points(path):
     source_y = "sourceY" if "sourceY" in header else "pixelY"
     missing = {"mapX", "mapY", source_x, source_y} - set(header)
     if missing:
-        raise DataError(f"{path}: header {header} lacks {sorted(missing)}; "
-                         "expected mapX,mapY,sourceX,sourceY,enable")
+        raise DataError(_("{path}: header {header} lacks {sorted}; expected "
+                          "mapX,mapY,sourceX,sourceY,enable").format(
+                path=path, header=header, sorted=sorted(missing)))
     map_xy, image_xy, enabled, ids, notes = [], [], [], [], []
     for number, row in enumerate(reader, start=2):
         try:
             map_xy.append((float(row["mapX"]), float(row["mapY"])))
             image_xy.append((float(row[source_x]), -float(row[source_y])))
         except (TypeError, ValueError):
-            raise DataError(f"{path}, line {number}: coordinates must be numbers, got "
-                            f"{dict(row)}") from None
+            raise DataError(_("{path}, line {number}: coordinates must be numbers, got "
+                              "{dict}").format(path=path, number=number, dict=dict(row))) from None
         enabled.append(_as_enabled(row.get("enable"), path, number))
         # an id column keeps what it holds, empty included; QGIS's files have none: 1, 2, ...
         ids.append(str(len(ids) + 1) if row.get("id") is None else row["id"])
@@ -422,8 +427,8 @@ def write_points(path, gcps, model=None):
         exist.
     """
     if not isinstance(gcps, GCPSet):
-        raise TypeError(f"gcps must be a GCPSet (map_xy, image_xy, enabled), got "
-                        f"{type(gcps).__name__}")
+        raise TypeError(_("gcps must be a GCPSet (map_xy, image_xy, enabled), got {kind}").format(
+                kind=type(gcps).__name__))
     _check_one_line(gcps)
     if model is not None:
         dx, dy, distance = residuals(model, gcps.map_xy, gcps.image_xy)

@@ -684,7 +684,7 @@ def _geographic(crs):
     geogcs = wkt[start:end + 1]
     spheroid = re.search(r'SPHEROID\["[^"]*",([-+.\deE]+),([-+.\deE]+)', geogcs)
     if start < 0 or spheroid is None:
-        raise CRSError(f"cannot find the datum's ellipsoid in {crs}")
+        raise CRSError(_("cannot find the datum's ellipsoid in {crs}").format(crs=crs))
     inverse_flattening = float(spheroid.group(2))
     return (CRS.from_wkt(geogcs), float(spheroid.group(1)),
             1 / inverse_flattening if inverse_flattening else 0.0)
@@ -750,8 +750,8 @@ def geocentric_translation(points, src_crs, dst_crs, translation=SAD69_TO_SIRGAS
     """
     shift = np.asarray(translation, dtype=np.float64)
     if shift.shape != (3,) or not np.isfinite(shift).all():
-        raise CRSError(f"translation must be three finite numbers (tx, ty, tz) in metres, "
-                       f"got {translation!r}")
+        raise CRSError(_("translation must be three finite numbers (tx, ty, tz) in "
+                         "metres, got {translation!r}").format(translation=translation))
     src, dst = as_crs(src_crs, "src_crs"), as_crs(dst_crs, "dst_crs")
     (src_geo, *src_ellipsoid), (dst_geo, *dst_ellipsoid) = _geographic(src), _geographic(dst)
     lonlat = transform_points(points, src, src_geo)
@@ -1084,8 +1084,9 @@ def _as_raster(raster_or_path):
             return Raster(array[0] if dataset.count == 1 else array, dataset.transform,
                           dataset.crs, dataset.nodata, "", str(raster_or_path))
     except rasterio.errors.RasterioIOError as error:
-        raise DataError(f"cannot read {raster_or_path!r} as a raster ({error}); give an "
-                        "rsgeo.data.Raster or the path of a GeoTIFF") from None
+        raise DataError(_("cannot read {raster_or_path!r} as a raster ({error}); give "
+                          "an rsgeo.data.Raster or the path of a GeoTIFF").format(
+                raster_or_path=raster_or_path, error=error)) from None
 
 
 def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
@@ -1140,8 +1141,8 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
 
     check_choice(method, "method", _METHODS)
     if raster.crs is None:
-        raise CRSError(f"raster {raster.name!r} has no CRS; reprojecting needs to know "
-                       "which CRS its coordinates are in")
+        raise CRSError(_("raster {raster_name!r} has no CRS; reprojecting needs to know "
+                         "which CRS its coordinates are in").format(raster_name=raster.name))
     src_crs, dst = as_crs(raster.crs, "raster.crs"), as_crs(dst_crs, "dst_crs")
     size = abs(raster.transform.a) if resolution is None else resolution
 
@@ -1253,7 +1254,8 @@ def _fit(gcps, kind, order):
         return gcps.fit(1 if order is None else order)
     fit_transform = getattr(_transforms, "fit_transform", None)   # the other model kinds
     if fit_transform is None:
-        raise GCPError(f"kind {kind!r} is not available; use kind='polynomial' with an order")
+        raise GCPError(_("kind {kind!r} is not available; use kind='polynomial' with an "
+                         "order").format(kind=kind))
     image_xy, map_xy = gcps.image_xy[gcps.enabled], gcps.map_xy[gcps.enabled]
     if kind == "tps":
         # GDAL's TPS transformer: the image -> map spline, inverted point by point (its
@@ -1327,7 +1329,8 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
 
     check_choice(method, "method", _METHODS)
     if not isinstance(gcps, GCPSet):
-        raise TypeError(f"gcps must be an rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
+        raise TypeError(_("gcps must be an rsgeo.gcp.GCPSet, got {kind}").format(
+                kind=type(gcps).__name__))
     raster = _as_raster(raster_or_path)
     model = _fit(gcps, kind, order)
     reverse = (model.reverse() if hasattr(model, "reverse") else model.inverse())
@@ -1338,8 +1341,8 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     if dst_crs is not None:
         dst = as_crs(dst_crs, "dst_crs")
         if src_crs is None:
-            raise CRSError("the GCPs have no CRS (gcps.crs is None); set it to reproject "
-                           "into dst_crs")
+            raise CRSError(_("the GCPs have no CRS (gcps.crs is None); set it to reproject into "
+                             "dst_crs"))
         if dst != src_crs:
             pixel_to_map = _then_transform(reverse, src_crs, dst)
             mapping = CRSMapping(model, src_crs, dst)

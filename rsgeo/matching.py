@@ -51,7 +51,7 @@ from numba import njit
 
 from . import gcp, tiepoints
 from ._checks import as_integer, as_number, as_points, check_choice
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import GCPError, RsgeoError
 
 __all__ = [
@@ -108,13 +108,14 @@ class Mesh:  # numpydoc ignore=PR02
         self.centroids = as_points(self.centroids, "centroids") * float(self.pixel_size)
         self.areas = np.asarray(self.areas, dtype=np.float64).ravel() * float(self.pixel_size) ** 2
         if len(self.centroids) < 3:
-            raise RsgeoError(f"a relational mesh needs at least 3 segments, got "
-                             f"{len(self.centroids)}")
+            raise RsgeoError(_("a relational mesh needs at least 3 segments, got "
+                               "{n_values}").format(n_values=len(self.centroids)))
         if len(self.areas) != len(self.centroids):
-            raise RsgeoError(f"centroids and areas must describe the same segments, got "
-                             f"{len(self.centroids)} centroids and {len(self.areas)} areas")
+            raise RsgeoError(_("centroids and areas must describe the same segments, "
+                               "got {n_values} centroids and {n_values2} areas").format(
+                    n_values=len(self.centroids), n_values2=len(self.areas)))
         if not (np.isfinite(self.areas).all() and (self.areas > 0).all()):
-            raise RsgeoError("every segment area must be a positive number")
+            raise RsgeoError(_("every segment area must be a positive number"))
         difference = self.centroids[:, np.newaxis] - self.centroids[np.newaxis]
         self.distances = np.hypot(difference[..., 0], difference[..., 1])
 
@@ -137,11 +138,12 @@ def _as_solutions(solutions, n, m):
     if solutions.ndim == 1:
         solutions = solutions[np.newaxis]
     if solutions.shape[1] != n:
-        raise RsgeoError(f"a solution needs one label per adjustment segment ({n}), got "
-                         f"{solutions.shape[1]}")
+        raise RsgeoError(_("a solution needs one label per adjustment segment ({n}), "
+                           "got {value}").format(n=n, value=solutions.shape[1]))
     if solutions.min() < 0 or solutions.max() > m:
-        raise RsgeoError(f"labels must be 0 (no match) to {m} (the reference segments), "
-                         f"got {solutions.min()} to {solutions.max()}")
+        raise RsgeoError(_("labels must be 0 (no match) to {m} (the reference "
+                           "segments), got {min} to {max}").format(
+                m=m, min=solutions.min(), max=solutions.max()))
     return solutions.astype(np.intp)
 
 
@@ -177,7 +179,7 @@ def fitness_batch(solutions, reference, adjustment, alpha=0.5, variant="paper"):
     [1.0, 0.7587]
     """
     _check_meshes(reference=reference, adjustment=adjustment)
-    alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
+    alpha = as_number(alpha, "alpha", 0, 1, N_("the weight of size against layout"))
     check_choice(variant, "variant", VARIANTS)
     m, n = len(reference), len(adjustment)
     solutions = _as_solutions(solutions, n, m)
@@ -432,7 +434,8 @@ def encode(solution, bits=BITS_PER_GENE):
     """
     solution = np.asarray(solution, dtype=np.int64)
     if solution.min() < 0 or solution.max() >= 2**bits:
-        raise RsgeoError(f"labels must fit in {bits} bits (0 to {2**bits - 1})")
+        raise RsgeoError(_("labels must fit in {bits} bits (0 to {value})").format(
+                bits=bits, value=2 ** bits - 1))
     powers = 2 ** np.arange(bits - 1, -1, -1)
     bits_of = (solution[..., np.newaxis] // powers) % 2
     return bits_of.reshape(solution.shape[:-1] + (-1,)).astype(np.uint8)
@@ -469,10 +472,10 @@ def decode(chromosome, bits=BITS_PER_GENE):
     """
     chromosome = np.asarray(chromosome, dtype=np.int64)
     if chromosome.shape[-1] % bits:
-        raise RsgeoError(f"a chromosome holds {bits} bits per gene; {chromosome.shape[-1]} bits "
-                         "is not a multiple")
+        raise RsgeoError(_("a chromosome holds {bits} bits per gene; {value} bits is "
+                           "not a multiple").format(bits=bits, value=chromosome.shape[-1]))
     if not np.isin(chromosome, (0, 1)).all():
-        raise RsgeoError("a chromosome holds only 0 and 1")
+        raise RsgeoError(_("a chromosome holds only 0 and 1"))
     genes = chromosome.reshape(chromosome.shape[:-1] + (-1, bits))
     return genes @ (2 ** np.arange(bits - 1, -1, -1))
 
@@ -610,7 +613,7 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     True
     """
     _check_meshes(reference=reference, adjustment=adjustment)
-    alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
+    alpha = as_number(alpha, "alpha", 0, 1, N_("the weight of size against layout"))
     check_choice(variant, "variant", VARIANTS)
     check_choice(selection, "selection", ("tournament", "roulette"))
     check_choice(encoding, "encoding", ("binary", "integer"))
@@ -632,15 +635,18 @@ def genetic_match(reference, adjustment, alpha=0.5, seed=None, population_size=1
     if seed is not None:
         seed = as_integer(seed, "seed", 0)
     if int(population_size) < 2 or int(generations) < 1:
-        raise RsgeoError(f"population_size must be at least 2 and generations at least 1, "
-                         f"got {population_size} and {generations}")
+        raise RsgeoError(_("population_size must be at least 2 and generations at least "
+                           "1, got {population_size} and {generations}").format(
+                population_size=population_size, generations=generations))
     if not 1 <= int(tournament_size) <= int(population_size):
-        raise RsgeoError(f"tournament_size must be 1 to population_size ({population_size}), "
-                         f"got {tournament_size}")
+        raise RsgeoError(_("tournament_size must be 1 to population_size "
+                           "({population_size}), got {tournament_size}").format(
+                population_size=population_size, tournament_size=tournament_size))
     if stall_generations is not None and int(stall_generations) < 1:
-        raise RsgeoError("stall_generations must be at least 1 (or None to run every "
-                         f"generation), got {stall_generations}")
-    as_number(crossover_rate, "crossover_rate", 0, 1, "a probability")
+        raise RsgeoError(_("stall_generations must be at least 1 (or None to run every "
+                           "generation), got {stall_generations}").format(
+                stall_generations=stall_generations))
+    as_number(crossover_rate, "crossover_rate", 0, 1, N_("a probability"))
     rng = np.random.default_rng(seed)
     m, n = len(reference), len(adjustment)
     genes_per_individual = n * BITS_PER_GENE if encoding == "binary" else n
@@ -757,8 +763,8 @@ def exhaustive_match(reference, adjustment, alpha=0.5, one_to_one=None, batch=20
     if one_to_one is None:
         one_to_one = (m + 1) ** n > 5_000_000
     if one_to_one and n > m:
-        raise RsgeoError(f"a one-to-one match needs no more adjustment segments ({n}) than "
-                         f"reference ones ({m})")
+        raise RsgeoError(_("a one-to-one match needs no more adjustment segments ({n}) "
+                           "than reference ones ({m})").format(n=n, m=m))
     if one_to_one:
         candidates = permutations(range(1, m + 1), n)
         chunks = (np.array([c for _index, c in zip(range(batch), candidates)], dtype=np.intp)
@@ -833,7 +839,7 @@ def optimum_match(reference, adjustment, alpha=0.5, variant="paper", incumbent=N
     ([3, 1, 2], True)
     """
     _check_meshes(reference=reference, adjustment=adjustment)
-    alpha = as_number(alpha, "alpha", 0, 1, "the weight of size against layout")
+    alpha = as_number(alpha, "alpha", 0, 1, N_("the weight of size against layout"))
     check_choice(variant, "variant", VARIANTS)
     m, n = len(reference), len(adjustment)
     order = np.argsort(-adjustment.areas, kind="stable")
@@ -982,9 +988,8 @@ def qap_match(reference, adjustment, alpha=0.5, seed=None, restarts=20, variant=
     _check_meshes(reference=reference, adjustment=adjustment)
     m, n = len(reference), len(adjustment)
     if m != n:
-        raise RsgeoError(f"qap_match pairs segments one to one: it needs as many reference "
-                         f"({m}) as "
-                         f"adjustment ({n}) segments")
+        raise RsgeoError(_("qap_match pairs segments one to one: it needs as many "
+                           "reference ({m}) as adjustment ({n}) segments").format(m=m, n=n))
     rng = np.random.default_rng(seed)
     best_solution, best_fitness = None, -np.inf
     for _restart in range(restarts):
@@ -1081,7 +1086,7 @@ def true_matching(reference_xy, adjustment_xy, tolerance):
     """
     reference_xy = as_points(reference_xy, "reference_xy")
     adjustment_xy = as_points(adjustment_xy, "adjustment_xy")
-    tolerance = as_number(tolerance, "tolerance", 0, None, "a distance")
+    tolerance = as_number(tolerance, "tolerance", 0, None, N_("a distance"))
     difference = adjustment_xy[:, np.newaxis] - reference_xy[np.newaxis]
     distances = np.hypot(difference[..., 0], difference[..., 1])
     nearest, distance = distances.argmin(axis=1), distances.min(axis=1)
@@ -1144,8 +1149,8 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
     image_xy = adjustment_xy / adjustment_pixel
     map_xy = reference.map_centroids(reference_transform)[labels - 1]
     if len(labels) < 3:
-        raise GCPError(f"only {len(labels)} segments were matched; an affine model needs at "
-                       "least 3")
+        raise GCPError(_("only {n_labels} segments were matched; an affine model needs "
+                         "at least 3").format(n_labels=len(labels)))
     # the pipeline every registration shares: tie points -> GCPSet -> model -> refinement
     result = tiepoints.register(gcp.GCPSet(map_xy, image_xy), "polynomial", 1, tolerance,
                                 min(min_gcps, len(labels)))

@@ -80,8 +80,8 @@ class GainOffsetFit:
         try:
             values = np.asarray(x, dtype=np.float64)
         except (TypeError, ValueError):
-            raise ImageError(f"x must be numbers (DN of the image to correct), got "
-                             f"{x!r}") from None
+            raise ImageError(_("x must be numbers (DN of the image to correct), got "
+                               "{x!r}").format(x=x)) from None
         return self.gain * values + self.offset
 
 
@@ -97,19 +97,22 @@ def _pair(x_image, y_image):
                               "pixels it keeps, e.g. x_image[mask]").format(
                                   name=name, dtype=values.dtype))
     if x.shape != y.shape:
-        raise ImageError(f"x_image and y_image must cover the same pixels (same shape), "
-                         f"got {x.shape} and {y.shape}; cut both to their overlap first")
+        raise ImageError(_("x_image and y_image must cover the same pixels (same "
+                           "shape), got {x_shape} and {y_shape}; cut both to their "
+                           "overlap first").format(x_shape=x.shape, y_shape=y.shape))
     if x.size < 3:
-        raise ImageError(f"a regression needs at least 3 pixel pairs, got {x.size}")
+        raise ImageError(_("a regression needs at least 3 pixel pairs, got {x_size}").format(
+                x_size=x.size))
     x, y = x.astype(np.float64), y.astype(np.float64)
     for name, values in (("x_image", x), ("y_image", y)):
         bad = int(np.count_nonzero(~np.isfinite(values)))
         if bad:
             raise ImageError(
-                f"{name} holds {bad} NaN or infinite value(s) of {values.size}: every pixel pair "
-                "must be finite. Mask them first, e.g. keep = np.isfinite(x_image) & "
-                "np.isfinite(y_image), then fit x_image[keep], y_image[keep] (without smooth, "
-                "which needs a full grid), or fill the gaps before filtering")
+                _("{name} holds {bad} NaN or infinite value(s) of {values_size}: every "
+                  "pixel pair must be finite. Mask them first, e.g. keep = "
+                  "np.isfinite(x_image) & np.isfinite(y_image), then fit x_image[keep], "
+                  "y_image[keep] (without smooth, which needs a full grid), or fill the "
+                  "gaps before filtering").format(name=name, bad=bad, values_size=values.size))
     return x, y
 
 
@@ -137,8 +140,8 @@ def mean_filter(image, size=3):
 
     size = as_integer(size, "size", 1, None, _("an odd window size: 3, 5, 7 ..."))
     if size % 2 == 0:
-        raise RsgeoError(f"filter size must be an odd positive integer (3, 5, 7 ...), got "
-                         f"{size!r}")
+        raise RsgeoError(_("filter size must be an odd positive integer (3, 5, 7 ...), "
+                           "got {size!r}").format(size=size))
     return uniform_filter(np.asarray(image, dtype=np.float64), size=int(size), mode="nearest")
 
 
@@ -281,8 +284,9 @@ def apply_gain_offset(image, gain, offset, rounding="truncate"):
     check_choice(rounding, "rounding", ("truncate", "nearest"))
     image = np.asarray(image)
     if image.dtype.kind not in "ui":
-        raise ImageError(f"apply_gain_offset truncates to integers: the image must have an "
-                         f"integer dtype, got {image.dtype}")
+        raise ImageError(_("apply_gain_offset truncates to integers: the image must "
+                           "have an integer dtype, got {image_dtype}").format(
+                image_dtype=image.dtype))
     gain = as_number(gain, "gain")
     offset = as_number(offset, "offset")
     info = np.iinfo(image.dtype)
@@ -327,7 +331,7 @@ def minmax_stretch(x_image, y_image):
     """
     x, y = _pair(x_image, y_image)
     if x.max() == x.min():
-        raise ImageError("x_image is constant: a min-max stretch is undefined")
+        raise ImageError(_("x_image is constant: a min-max stretch is undefined"))
     gain = (y.max() - y.min()) / (x.max() - x.min())
     return float(gain), float(y.min() - gain * x.min())
 
@@ -375,11 +379,12 @@ def match_histograms(image, reference):
     for name, values in (("image", image), ("reference", reference)):
         values = np.asarray(values)
         if values.dtype.kind not in "uif" or values.size == 0:
-            raise ImageError(f"{name} must be a non-empty array of integers or floats, got dtype "
-                             f"{values.dtype} and shape {values.shape}")
+            raise ImageError(_("{name} must be a non-empty array of integers or floats, "
+                               "got dtype {values_dtype} and shape {values_shape}").format(
+                    name=name, values_dtype=values.dtype, values_shape=values.shape))
         if not np.isfinite(values).all():
-            raise ImageError(f"{name} holds NaN or infinite values; mask or fill them before "
-                             "matching histograms")
+            raise ImageError(_("{name} holds NaN or infinite values; mask or fill them "
+                               "before matching histograms").format(name=name))
         arrays.append(values)
     image, reference = arrays
     # scikit-image's fast path for unsigned images needs an unsigned reference too
@@ -416,10 +421,11 @@ def overlap(raster_a, raster_b):
         If the CRSs differ or the rasters do not overlap.
     """
     if raster_a.crs != raster_b.crs:
-        raise CRSError(f"the rasters are in different CRSs ({raster_a.crs or 'no CRS'} and "
-                       f"{raster_b.crs or 'no CRS'}); pairing them pixel by pixel would mix two "
-                       "datums or projections: reproject one first with "
-                       "rsgeo.georef.reproject(raster, dst_crs)")
+        raise CRSError(_("the rasters are in different CRSs ({value} and {value2}); "
+                         "pairing them pixel by pixel would mix two datums or "
+                         "projections: reproject one first with "
+                         "rsgeo.georef.reproject(raster, dst_crs)").format(
+                value=raster_a.crs or 'no CRS', value2=raster_b.crs or 'no CRS'))
     west_a, south_a, east_a, north_a = raster_a.bounds
     west_b, south_b, east_b, north_b = raster_b.bounds
     west, east = max(west_a, west_b), min(east_a, east_b)
@@ -430,8 +436,8 @@ def overlap(raster_a, raster_b):
     col_start, row_start = int(np.ceil(col_start - 1e-6)), int(np.ceil(row_start - 1e-6))
     col_stop, row_stop = int(np.floor(col_stop + 1e-6)), int(np.floor(row_stop + 1e-6))
     if col_stop - col_start < 1 or row_stop - row_start < 1:
-        raise GridError(f"the rasters {raster_a.name or 'A'} and {raster_b.name or 'B'} do not "
-                        f"overlap on the ground")
+        raise GridError(_("the rasters {value} and {value2} do not overlap on the ground").format(
+                value=raster_a.name or 'A', value2=raster_b.name or 'B'))
     a_part = raster_a.array[row_start:row_stop, col_start:col_stop]
     rows, cols = np.mgrid[row_start:row_stop, col_start:col_stop] + 0.5
     x, y = raster_a.transform @ (cols, rows)
@@ -467,12 +473,14 @@ def concatenate_halves(left_image, right_image, split=None):
     """
     left_image, right_image = np.asarray(left_image), np.asarray(right_image)
     if left_image.shape != right_image.shape:
-        raise ImageError(f"both images must cover the same ground (same shape), got "
-                         f"{left_image.shape} and {right_image.shape}")
+        raise ImageError(_("both images must cover the same ground (same shape), got "
+                           "{left_image_shape} and {right_image_shape}").format(
+                left_image_shape=left_image.shape, right_image_shape=right_image.shape))
     split = left_image.shape[-1] // 2 if split is None else int(split)
     if not 1 <= split <= left_image.shape[-1] - 1:
-        raise RsgeoError(f"split must leave at least one column on each side (1 to "
-                         f"{left_image.shape[-1] - 1}), got {split}")
+        raise RsgeoError(_("split must leave at least one column on each side (1 to "
+                           "{value}), got {split}").format(
+                value=left_image.shape[-1] - 1, split=split))
     return np.concatenate([left_image[..., :split], right_image[..., split:]], axis=-1), split
 
 
@@ -506,7 +514,8 @@ def seam_step(mosaic, split, width=3):
     """
     mosaic = np.asarray(mosaic, dtype=np.float64)
     if not width <= split <= mosaic.shape[-1] - width:
-        raise RsgeoError(f"split {split} leaves fewer than {width} columns on one side")
+        raise RsgeoError(_("split {split} leaves fewer than {width} columns on one side").format(
+                split=split, width=width))
     right, left = mosaic[..., split:split + width], mosaic[..., split - width:split]
     return float(abs(right.mean() - left.mean()))
 
@@ -552,7 +561,7 @@ def seam_metrics(corrected, reference):
 
     a, b = _pair(corrected, reference)
     if b.std() == 0:
-        raise ImageError("reference is constant: its spread is 0 and no contrast ratio exists")
+        raise ImageError(_("reference is constant: its spread is 0 and no contrast ratio exists"))
     return {"mean_difference": float(a.mean() - b.mean()),
             "std_difference": float(a.std() - b.std()),
             "std_ratio": float(a.std() / b.std()),

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import as_image
+from ._i18n import _, prose_number
 from .errors import GridError, ImageError, RsgeoError
 
 __all__ = [
@@ -64,8 +65,8 @@ class Segments:
             If ``transform`` is not an affine.Affine.
         """
         if not all(hasattr(transform, key) for key in "abcdef"):
-            raise GridError(f"transform must be an affine.Affine geotransform (pixel -> map), "
-                            f"got {type(transform).__name__}")
+            raise GridError(_("transform must be an affine.Affine geotransform (pixel "
+                              "-> map), got {kind}").format(kind=type(transform).__name__))
         x, y = transform @ (self.centroids[:, 0], self.centroids[:, 1])
         return np.column_stack([x, y])
 
@@ -101,15 +102,16 @@ def centroids_and_areas(labels):
     """
     labels = np.asarray(labels)
     if labels.dtype.kind not in "ui" or labels.size == 0 or labels.min() < 0:
-        raise ImageError(f"labels must be a non-empty image of non-negative integers "
-                         f"(0 = background, 1..n = segments), got dtype {labels.dtype} and "
-                         f"shape {labels.shape}")
+        raise ImageError(_("labels must be a non-empty image of non-negative integers "
+                           "(0 = background, 1..n = segments), got dtype {labels_dtype} "
+                           "and shape {labels_shape}").format(
+                labels_dtype=labels.dtype, labels_shape=labels.shape))
     count = int(labels.max())
     rows, cols = np.indices(labels.shape)
     flat = labels.ravel()
     areas = np.bincount(flat, minlength=count + 1)[1:].astype(np.float64)
     if (areas == 0).any():
-        raise ImageError("labels must be consecutive 1..n with every label present")
+        raise ImageError(_("labels must be consecutive 1..n with every label present"))
     sum_cols = np.bincount(flat, weights=cols.ravel() + 0.5, minlength=count + 1)[1:]
     sum_rows = np.bincount(flat, weights=rows.ravel() + 0.5, minlength=count + 1)[1:]
     return np.column_stack([sum_cols / areas, sum_rows / areas]), areas
@@ -149,7 +151,8 @@ def forest_segments(image, threshold=None, min_area=30, smooth_sigma=1.0, openin
 
     image = as_image(image)
     if image.ndim != 2:
-        raise ImageError(f"forest_segments needs one band (2-D), got shape {image.shape}")
+        raise ImageError(_("forest_segments needs one band (2-D), got shape "
+                           "{image_shape}").format(image_shape=image.shape))
     smooth = (ndimage.gaussian_filter(image.astype(np.float64), smooth_sigma) if smooth_sigma
               else image)
     if threshold is None:
@@ -165,8 +168,9 @@ def forest_segments(image, threshold=None, min_area=30, smooth_sigma=1.0, openin
     relabel[keep] = np.arange(1, keep.sum() + 1)
     labels = relabel[labels]
     if labels.max() == 0:
-        raise RsgeoError(f"no forest segment of at least {min_area} pixels above threshold "
-                         f"{threshold:.3g}")
+        raise RsgeoError(_("no forest segment of at least {min_area} pixels above "
+                           "threshold {threshold:.3g}").format(
+                min_area=min_area, threshold=prose_number(threshold)))
     centroids, areas = centroids_and_areas(labels)
     return Segments(labels, centroids, areas)
 
@@ -202,8 +206,9 @@ def group_segments(segments, n_groups):
     from scipy.cluster.hierarchy import fcluster, linkage
 
     if not 1 <= n_groups <= len(segments):
-        raise RsgeoError(f"n_groups must be between 1 and the number of segments "
-                         f"({len(segments)}), got {n_groups}")
+        raise RsgeoError(_("n_groups must be between 1 and the number of segments "
+                           "({n_segments}), got {n_groups}").format(
+                n_segments=len(segments), n_groups=n_groups))
     if n_groups == len(segments):
         return segments
     groups = fcluster(linkage(segments.centroids, method="ward"), n_groups, criterion="maxclust")
@@ -241,8 +246,9 @@ def keep_largest(segments, count):
         If ``count`` is outside 1 to ``len(segments)``.
     """
     if not 1 <= count <= len(segments):
-        raise RsgeoError(f"count must be between 1 and the number of segments "
-                         f"({len(segments)}), got {count}")
+        raise RsgeoError(_("count must be between 1 and the number of segments "
+                           "({n_segments}), got {count}").format(
+                n_segments=len(segments), count=count))
     order = np.argsort(-segments.areas, kind="stable")[:count]
     lookup = np.zeros(len(segments) + 1, dtype=np.int32)
     lookup[order + 1] = np.arange(1, count + 1)
@@ -275,6 +281,7 @@ def ndvi(red, nir):
     red = np.asarray(red, dtype=np.float64)
     nir = np.asarray(nir, dtype=np.float64)
     if red.shape != nir.shape:
-        raise ImageError(f"red and nir must have the same shape, got {red.shape} and {nir.shape}")
+        raise ImageError(_("red and nir must have the same shape, got {red_shape} and "
+                           "{nir_shape}").format(red_shape=red.shape, nir_shape=nir.shape))
     total = red + nir
     return np.where(total > 0, (nir - red) / np.where(total > 0, total, 1.0), 0.0)

@@ -87,7 +87,7 @@ from ._checks import (
     as_shape,
     check_choice,
 )
-from ._i18n import _
+from ._i18n import N_, _, prose_number
 from .errors import GridError, ImageError, ModelError, RsgeoError
 from .transformer import ARRAYS, pack, pixel_centre, row_positions, to_source
 
@@ -424,12 +424,13 @@ def _check_positions(cols, rows):
         arrays.append(array.astype(np.float64, copy=False))
     cols, rows = arrays
     if cols.shape != rows.shape:
-        raise RsgeoError(f"cols and rows must have the same shape, got {cols.shape} and "
-                         f"{rows.shape}")
+        raise RsgeoError(_("cols and rows must have the same shape, got {cols_shape} "
+                           "and {rows_shape}").format(
+                cols_shape=cols.shape, rows_shape=rows.shape))
     if not (np.isfinite(cols).all() and np.isfinite(rows).all()):
-        raise RsgeoError("cols and rows hold NaN or infinite positions; every position must be "
-                         "finite "
-                         "(mark points you do not want with a position outside the image instead)")
+        raise RsgeoError(_("cols and rows hold NaN or infinite positions; every position must "
+                           "be finite (mark points you do not want with a position outside the "
+                           "image instead)"))
     return cols, rows
 
 
@@ -1377,11 +1378,11 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     to_map = as_affine(transform) if transform is not None else affine.Affine.identity()
     _check_mapping(mapping)
     strip_rows = as_integer(strip_rows, "strip_rows", low=1,
-                            why="rows of the output grid computed at a time")
+                            why=N_("rows of the output grid computed at a time"))
     _check_exact_in_float64(image, method)
     valid = _validity(image, src_nodata)
     error_threshold = as_number(error_threshold, "error_threshold", low=0.0,
-                                why="source pixels; 0 for exact positions")
+                                why=N_("source pixels; 0 for exact positions"))
     src_offset = _as_src_offset(src_offset, scale)
     dst_offset = _as_offset(dst_offset, "dst_offset", "the output window's first cell")
     window_to_map = to_map @ affine.Affine.translation(*dst_offset)
@@ -1476,27 +1477,34 @@ def _call_mapping(mapping, x, y):
         return np.column_stack([cols, rows])
     source = np.asarray(mapping(points), dtype=np.float64)
     if source.shape != (points.shape[0], 2):
-        raise ModelError(f"mapping must return an (n, 2) array of (col, row), got shape "
-                         f"{source.shape}")
+        raise ModelError(_("mapping must return an (n, 2) array of (col, row), got "
+                           "shape {source_shape}").format(source_shape=source.shape))
     return source
 
 
 def _nothing_lands_message(mapping, spans, width, height):
     """The error of a warp whose output grid falls entirely outside the source."""
     spans = np.array(spans)
-    where = (f"the output cells fall at source cols {spans[:, 0].min():.6g} to "
-             f"{spans[:, 1].max():.6g}, rows {spans[:, 2].min():.6g} to {spans[:, 3].max():.6g}, "
-             f"outside the image's [0, {width}) x [0, {height})")
     if isinstance(mapping, affine.Affine):
-        fix = ("for a raster's geotransform (pixel → map) pass its inverse, "
-               "e.g. ~raster.transform")
+        message = _("no output cell lands inside the source image: is your mapping map → image "
+                    "(u = f(x, y))? for a raster's geotransform (pixel → map) pass its inverse, "
+                    "e.g. ~raster.transform; also check that the output grid (shape, "
+                    "transform) covers the source's ground (the output cells fall at source "
+                    "cols {col_low:.6g} to {col_high:.6g}, rows {row_low:.6g} to "
+                    "{row_high:.6g}, outside the image's [0, {width}) x [0, {height}))")
     else:
-        fix = ("fit the model from map to image, e.g. "
-               "transforms.fit_polynomial(map_xy, image_xy, order), not image → map; "
-               "for a raster's geotransform pass ~raster.transform")
-    return ("no output cell lands inside the source image: is your mapping map → image "
-            f"(u = f(x, y))? {fix}; also check that the output grid (shape, transform) "
-            f"covers the source's ground ({where})")
+        message = _("no output cell lands inside the source image: is your mapping map → image "
+                    "(u = f(x, y))? fit the model from map to image, e.g. "
+                    "transforms.fit_polynomial(map_xy, image_xy, order), not image → map; for "
+                    "a raster's geotransform pass ~raster.transform; also check that the "
+                    "output grid (shape, transform) covers the source's ground (the output "
+                    "cells fall at source cols {col_low:.6g} to {col_high:.6g}, rows "
+                    "{row_low:.6g} to {row_high:.6g}, outside the image's [0, {width}) x "
+                    "[0, {height}))")
+    return message.format(col_low=prose_number(spans[:, 0].min()),
+                          col_high=prose_number(spans[:, 1].max()),
+                          row_low=prose_number(spans[:, 2].min()),
+                          row_high=prose_number(spans[:, 3].max()), width=width, height=height)
 
 
 def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
@@ -1551,8 +1559,8 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
     else:
         source = np.asarray(mapping(np.column_stack([x, y])), dtype=np.float64)
         if source.shape != (x.size, 2):
-            raise ModelError("mapping must return an (n, 2) array of (col, row), got shape "
-                             f"{source.shape}")
+            raise ModelError(_("mapping must return an (n, 2) array of (col, row), got "
+                               "shape {source_shape}").format(source_shape=source.shape))
         source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
     spans = [source_cols.max() - source_cols.min(), source_rows.max() - source_rows.min()]
     if src_shape is not None:
@@ -1637,8 +1645,8 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     if resolution is not None:
         resolution = as_resolution(resolution)
     elif tap:
-        raise GridError("tap=True needs a resolution: target-aligned pixels are aligned on "
-                        "multiples of the pixel size (gdalwarp: -tap needs -tr)")
+        raise GridError(_("tap=True needs a resolution: target-aligned pixels are aligned on "
+                          "multiples of the pixel size (gdalwarp: -tap needs -tr)"))
     steps = min(max(int(min(width, height) / 50 + 0.5), 20), 100)
     ratio = np.array([i / steps for i in range(steps)] + [1.0])
     # top, bottom, left, right: the last point is the bottom-right corner
@@ -1653,8 +1661,8 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     else:
         points = np.asarray(mapping(np.column_stack([cols, rows])), dtype=np.float64)
         if points.shape != (cols.size, 2):
-            raise ModelError("mapping must return an (n, 2) array of map (x, y), got shape "
-                             f"{points.shape}")
+            raise ModelError(_("mapping must return an (n, 2) array of map (x, y), got "
+                               "shape {points_shape}").format(points_shape=points.shape))
         x, y = _check_positions(points[:, 0], points[:, 1])
     min_x, max_x, min_y, max_y = x.min(), x.max(), y.min(), y.max()
     delta_x, delta_y = x[-1] - x[0], y[-1] - y[0]
@@ -1663,8 +1671,8 @@ def suggested_grid(src_shape, mapping, resolution=None, tap=False):
     size = np.sqrt(delta_x * delta_x + delta_y * delta_y) / np.sqrt(
         float(width) * width + float(height) * height)
     if not (size > 0 and max_x > min_x and max_y > min_y):
-        raise ModelError("mapping takes the source onto a point or a line; it must go from "
-                         "source pixel (col, row) to map (x, y), e.g. raster.transform")
+        raise ModelError(_("mapping takes the source onto a point or a line; it must go from "
+                           "source pixel (col, row) to map (x, y), e.g. raster.transform"))
     n_cols = int((max_x - min_x) / size + 0.5)
     n_rows = int((max_y - min_y) / size + 0.5)
     max_x = min_x + n_cols * size

@@ -79,7 +79,7 @@ from ._checks import (
     as_shape,
     check_choice,
 )
-from ._i18n import _
+from ._i18n import _, prose_number
 from .data import _as_affine
 from .errors import CRSError, DataError, GCPError, GridError, ImageError, ModelError, RsgeoError
 from .resample import METHODS, interpolate
@@ -133,8 +133,8 @@ def relief_displacement(height_m, view_zenith_deg):
     height = as_finite(height_m, "height_m")
     angle = as_finite(view_zenith_deg, "view_zenith_deg")
     if np.any((angle < 0) | (angle >= 90)):
-        raise RsgeoError(f"view_zenith_deg must be in [0, 90) degrees (0 = nadir), got "
-                         f"{_few(angle[(angle < 0) | (angle >= 90)])}")
+        raise RsgeoError(_("view_zenith_deg must be in [0, 90) degrees (0 = nadir), got "
+                           "{few}").format(few=_few(angle[(angle < 0) | (angle >= 90)])))
     result = height * np.tan(np.radians(angle))
     return float(result) if result.ndim == 0 else result
 
@@ -172,11 +172,12 @@ def relief_displacement_photo(height_m, radial_distance_mm, flying_height_m):
     radius = as_finite(radial_distance_mm, "radial_distance_mm")
     flying = float(as_finite(flying_height_m, "flying_height_m"))
     if np.any(radius < 0):
-        raise RsgeoError("radial_distance_mm must be >= 0 (a distance from the principal point), "
-                         f"got {_few(radius[radius < 0])}")
+        raise RsgeoError(_("radial_distance_mm must be >= 0 (a distance from the "
+                           "principal point), got {few}").format(few=_few(radius[radius < 0])))
     if np.any(height >= flying):
-        raise RsgeoError(f"flying_height_m ({flying:g} m) must be above every height; got heights "
-                         f"up to {float(np.max(height)):g} m")
+        raise RsgeoError(_("flying_height_m ({flying:g} m) must be above every height; "
+                           "got heights up to {value:g} m").format(
+                flying=prose_number(flying), value=prose_number(float(np.max(height)))))
     result = radius * height / flying
     return float(result) if result.ndim == 0 else result
 
@@ -209,10 +210,12 @@ def height_error_budget(position_error_m, view_zenith_deg):
     budget = float(as_finite(position_error_m, "position_error_m"))
     angle = float(as_finite(view_zenith_deg, "view_zenith_deg"))
     if budget <= 0:
-        raise RsgeoError(f"position_error_m must be > 0, got {budget:g}")
+        raise RsgeoError(_("position_error_m must be > 0, got {budget:g}").format(
+                budget=prose_number(budget)))
     if not 0 < angle < 90:
-        raise RsgeoError(f"view_zenith_deg must be in (0, 90) degrees (at nadir any height error "
-                         f"is allowed), got {angle:g}")
+        raise RsgeoError(_("view_zenith_deg must be in (0, 90) degrees (at nadir any "
+                           "height error is allowed), got {angle:g}").format(
+                angle=prose_number(angle)))
     return float(budget / np.tan(np.radians(angle)))
 
 
@@ -443,20 +446,24 @@ class RPCModel:
         try:
             upper = {str(key).upper(): value for key, value in dict(mapping).items()}
         except (TypeError, ValueError):
-            raise TypeError(f"mapping must be a dict of RPC metadata (LINE_OFF, SAMP_OFF, ..., "
-                            f"LINE_NUM_COEFF, ...), got {type(mapping).__name__}") from None
+            raise TypeError(_("mapping must be a dict of RPC metadata (LINE_OFF, "
+                              "SAMP_OFF, ..., LINE_NUM_COEFF, ...), got {kind}").format(
+                    kind=type(mapping).__name__)) from None
         missing = [key for key in _SCALARS + _COEFFS if key not in upper]
         if missing:
-            raise DataError(f"the RPC mapping lacks {', '.join(missing)}; an RPC00B model needs "
-                            f"{', '.join(_SCALARS + _COEFFS)}")
+            raise DataError(_("the RPC mapping lacks {listed}; an RPC00B model needs "
+                              "{listed2}").format(
+                    listed=', '.join(missing), listed2=', '.join(_SCALARS + _COEFFS)))
         numbers = {}
         for key in _SCALARS + tuple(k for k in _OPTIONAL if k in upper):
             try:
                 numbers[key] = float(upper[key])
             except (TypeError, ValueError):
-                raise DataError(f"RPC entry {key} must be a number, got {upper[key]!r}") from None
+                raise DataError(_("RPC entry {key} must be a number, got {value!r}").format(
+                        key=key, value=upper[key])) from None
             if not np.isfinite(numbers[key]):
-                raise DataError(f"RPC entry {key} must be finite, got {upper[key]!r}")
+                raise DataError(_("RPC entry {key} must be finite, got {value!r}").format(
+                        key=key, value=upper[key]))
         coeffs = []
         for key in _COEFFS:
             value = upper[key]
@@ -465,14 +472,16 @@ class RPCModel:
             try:
                 array = np.asarray(value, dtype=np.float64).ravel()
             except (TypeError, ValueError):
-                raise DataError(f"RPC entry {key} must be 20 numbers, got {value!r}") from None
+                raise DataError(_("RPC entry {key} must be 20 numbers, got {value!r}").format(
+                        key=key, value=value)) from None
             if array.size != 20 or not np.isfinite(array).all():
-                raise DataError(f"RPC entry {key} must be 20 finite numbers, got {array.size}")
+                raise DataError(_("RPC entry {key} must be 20 finite numbers, got "
+                                  "{array_size}").format(key=key, array_size=array.size))
             coeffs.append(array)
         for kind in ("LINE", "SAMP", "LAT", "LONG", "HEIGHT"):
             if numbers[f"{kind}_SCALE"] == 0:
-                raise DataError(f"RPC entry {kind}_SCALE is 0; scales divide, "
-                                "so they must not be 0")
+                raise DataError(_("RPC entry {kind}_SCALE is 0; scales divide, so they "
+                                  "must not be 0").format(kind=kind))
         offsets = {k: numbers[f"{k}_OFF"] for k in ("LINE", "SAMP", "LAT", "LONG", "HEIGHT")}
         scales = {k: numbers[f"{k}_SCALE"] for k in ("LINE", "SAMP", "LAT", "LONG", "HEIGHT")}
         extra = {k: numbers[k] for k in _OPTIONAL if k in numbers}
@@ -647,7 +656,8 @@ class RPCModel:
         height = as_finite(height, "height")
         col, row, height = np.broadcast_arrays(col, row, height)
         if not tolerance > 0:
-            raise RsgeoError(f"tolerance must be > 0 pixels, got {tolerance!r}")
+            raise RsgeoError(_("tolerance must be > 0 pixels, got {tolerance!r}").format(
+                    tolerance=tolerance))
         lon = np.full(col.shape, self.offsets["LONG"])
         lat = np.full(col.shape, self.offsets["LAT"])
         step_lon = 1e-7 * self.scales["LONG"]
@@ -668,9 +678,10 @@ class RPCModel:
         bad = np.maximum(np.abs(c0 - col), np.abs(r0 - row)) >= tolerance
         if bad.any():
             where = np.flatnonzero(bad.ravel())[:5].tolist()
-            raise ModelError(f"localize did not converge to {tolerance:g} px for {bad.sum()} "
-                             f"point(s) (flat indices {where}); are they inside the image the "
-                             "RPC describes?")
+            raise ModelError(_("localize did not converge to {tolerance:g} px for {sum} "
+                               "point(s) (flat indices {where}); are they inside the "
+                               "image the RPC describes?").format(
+                    tolerance=prose_number(tolerance), sum=bad.sum(), where=where))
         return lon, lat
 
 
@@ -706,12 +717,12 @@ def _lon_lat_height(lon, lat, height):
     lat = as_finite(lat, "lat")
     height = as_finite(height, "height")
     if np.any(np.abs(lat) > 90):
-        raise CRSError(f"lat must be in [-90, 90] degrees, got {_few(lat[np.abs(lat) > 90])} "
-                       "(longitude and latitude swapped?)")
+        raise CRSError(_("lat must be in [-90, 90] degrees, got {few} (longitude and "
+                         "latitude swapped?)").format(few=_few(lat[np.abs(lat) > 90])))
     if np.any((lon < -180) | (lon > 360)):
-        raise CRSError(f"lon must be in [-180, 360] degrees, got "
-                       f"{_few(lon[(lon < -180) | (lon > 360)])} (projected metres given "
-                       "instead of degrees?)")
+        raise CRSError(_("lon must be in [-180, 360] degrees, got {few} (projected "
+                         "metres given instead of degrees?)").format(
+                few=_few(lon[(lon < -180) | (lon > 360)])))
     return np.broadcast_arrays(lon, lat, height)
 
 
@@ -768,14 +779,16 @@ def fit_rpc(lon, lat, height, col, row, regularization=1e-10):
     col = np.ravel(as_finite(col, "col"))
     row = np.ravel(as_finite(row, "row"))
     if not (lon.size == lat.size == height.size == col.size == row.size):
-        raise GCPError(f"lon, lat, height, col and row must have one size, got {lon.size}, "
-                       f"{lat.size}, {height.size}, {col.size}, {row.size}")
+        raise GCPError(_("lon, lat, height, col and row must have one size, got "
+                         "{lon_size}, {lat_size}, {height_size}, {col_size}, {row_size}").format(
+                lon_size=lon.size, lat_size=lat.size, height_size=height.size,
+                col_size=col.size, row_size=row.size))
     if lon.size < 39:
-        raise GCPError(f"fit_rpc needs at least 39 points (39 unknowns per coordinate), "
-                       f"got {lon.size}")
+        raise GCPError(_("fit_rpc needs at least 39 points (39 unknowns per "
+                         "coordinate), got {lon_size}").format(lon_size=lon.size))
     if np.ptp(height) == 0:
-        raise GCPError("the heights do not vary; fit the RPC to a 3-D grid (several height "
-                       "layers), as the height terms need")
+        raise GCPError(_("the heights do not vary; fit the RPC to a 3-D grid (several height "
+                         "layers), as the height terms need"))
 
     def middle_half(values, least=1e-9):
         low, high = float(values.min()), float(values.max())
@@ -1128,8 +1141,8 @@ def _gdal_inverse(gt):
     det = gt[1] * gt[5] - gt[2] * gt[4]
     magnitude = max(abs(gt[1]), abs(gt[2]), abs(gt[4]), abs(gt[5]))
     if abs(det) <= 1e-10 * magnitude * magnitude:
-        raise GridError(f"the geotransform {tuple(gt)} cannot be inverted "
-                        "(its pixels have no area)")
+        raise GridError(_("the geotransform {gt} cannot be inverted (its pixels have no "
+                          "area)").format(gt=tuple(gt)))
     inv = 1.0 / det
     return np.array([(gt[2] * gt[3] - gt[0] * gt[5]) * inv, gt[5] * inv, -gt[2] * inv,
                      (-gt[1] * gt[3] + gt[0] * gt[4]) * inv, -gt[4] * inv, gt[1] * inv])
@@ -1345,7 +1358,8 @@ def dem_height(dem, dem_transform, x, y, dem_nodata=None):
     x = np.asarray(x, dtype=np.float64)
     y = np.asarray(y, dtype=np.float64)
     if x.shape != y.shape:
-        raise RsgeoError(f"x and y must have the same shape, got {x.shape} and {y.shape}")
+        raise RsgeoError(_("x and y must have the same shape, got {x_shape} and "
+                           "{y_shape}").format(x_shape=x.shape, y_shape=y.shape))
     prepared = _prepare_dem(dem, dem_transform, dem_nodata)
     heights, outside, holed = _sample_dem(prepared, x, y)
     _raise_dem_problems(prepared, outside, holed, x.size)
@@ -1362,7 +1376,8 @@ def _prepare_dem(dem, dem_transform, dem_nodata):
                 dtype=np.asarray(dem).dtype))
     dem = np.asarray(dem, dtype=np.float64)
     if dem.ndim != 2 or min(dem.shape) < 1:
-        raise ImageError(f"dem must be a 2-D (rows, cols) array of heights, got shape {dem.shape}")
+        raise ImageError(_("dem must be a 2-D (rows, cols) array of heights, got shape "
+                           "{dem_shape}").format(dem_shape=dem.shape))
     inverse = _gdal_inverse(_as_gdal(dem_transform, "dem_transform"))
     holes = ~np.isfinite(dem)
     if dem_nodata is not None:
@@ -1395,15 +1410,18 @@ def _raise_dem_problems(prepared, outside, holed, n):
     """The errors of points outside the DEM or over its holes (counts over ``n`` points)."""
     work, _inverse, holes, dem_transform = prepared
     if outside[0]:
-        raise GridError(f"the DEM does not cover {outside[0]} of {n} points (first at "
-                        f"x={outside[1]:.6f}, y={outside[2]:.6f}; DEM bounds "
-                        f"{_bounds(work.shape, dem_transform)}); give a DEM that covers the "
-                        "output grid")
+        raise GridError(_("the DEM does not cover {value} of {n} points (first at "
+                          "x={value2:.6f}, y={value3:.6f}; DEM bounds {bounds}); give a "
+                          "DEM that covers the output grid").format(
+                value=outside[0], n=n, value2=prose_number(outside[1]),
+                value3=prose_number(outside[2]), bounds=_bounds(work.shape, dem_transform)))
     if holed[0]:
         rows, cols = np.nonzero(holes)
-        raise ImageError(f"the DEM has nodata holes ({holes.sum()} cells, e.g. row {rows[0]}, "
-                         f"col {cols[0]}) under {holed[0]} points (first at "
-                         f"x={holed[1]:.6f}, y={holed[2]:.6f}); fill them first")
+        raise ImageError(_("the DEM has nodata holes ({sum} cells, e.g. row {value}, "
+                           "col {value2}) under {value3} points (first at "
+                           "x={value4:.6f}, y={value5:.6f}); fill them first").format(
+                sum=holes.sum(), value=rows[0], value2=cols[0], value3=holed[0],
+                value4=prose_number(holed[1]), value5=prose_number(holed[2])))
 
 
 def _outside_mask(shape, inverse, x, y):
@@ -1666,9 +1684,11 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
             method, nodata=nodata, num_threads=num_threads).reshape((bands,) + strip_shape)
     _raise_dem_problems(prepared, outside, holed, shape[0] * shape[1])
     if not seen:
-        raise GridError(f"no output cell sees the image ({height} x {width} px): the grid is "
-                        "elsewhere; check dst_transform and dst_crs against the RPC's area "
-                        f"(lon {rpc.offsets['LONG']:.4f}, lat {rpc.offsets['LAT']:.4f})")
+        raise GridError(_("no output cell sees the image ({height} x {width} px): the "
+                          "grid is elsewhere; check dst_transform and dst_crs against "
+                          "the RPC's area (lon {value:.4f}, lat {value2:.4f})").format(
+                height=height, width=width, value=prose_number(rpc.offsets['LONG']),
+                value2=prose_number(rpc.offsets['LAT'])))
     return out if image.ndim == 3 else out[0]
 
 
@@ -1761,7 +1781,7 @@ class PushbroomSensor:
         """
         x, y, h = (np.asarray(a, dtype=float) for a in (x, y, h))
         if np.any(h >= self.altitude):
-            raise ModelError("a ground point is at or above the platform's altitude")
+            raise ModelError(_("a ground point is at or above the platform's altitude"))
         angle = np.arctan((x - self.x_nadir) / (self.altitude - h))
         col = (angle - self.centre) / self.ifov + self.columns / 2
         row = (self.y0 - y) / self.line_step
@@ -1853,7 +1873,8 @@ class PushbroomSensor:
         rows, cols = as_shape(shape)
         ground = as_image(ground, "ground")
         if ground.ndim != 2:
-            raise ImageError(f"ground must be a 2-D image, got shape {ground.shape}")
+            raise ImageError(_("ground must be a 2-D image, got shape {ground_shape}").format(
+                    ground_shape=ground.shape))
         r, c = np.mgrid[0:rows, 0:cols] + 0.5
         x, y, h = self.ground_on_dem(c, r, dem, dem_transform)
         gt = _gdal_inverse(_as_gdal(ground_transform, "ground_transform"))
@@ -1897,7 +1918,8 @@ def fit_rpc_to_sensor(sensor, crs, bounds, heights, n=15):
     """
     low, high = (float(v) for v in heights)
     if not high > low:
-        raise RsgeoError(f"heights must be (low, high) with high > low, got {heights!r}")
+        raise RsgeoError(_("heights must be (low, high) with high > low, got {heights!r}").format(
+                heights=heights))
     west, south, east, north = (float(v) for v in bounds)
     x, y, h = np.meshgrid(np.linspace(west, east, n), np.linspace(south, north, n),
                           np.linspace(low, high, 5), indexing="ij")
@@ -1948,7 +1970,8 @@ def map_on_grid(image, transform, dst_transform, dst_shape, method="bilinear", n
     """
     image = as_image(image)
     if image.ndim != 2:
-        raise ImageError(f"image must be 2-D, got shape {image.shape}")
+        raise ImageError(_("image must be 2-D, got shape {image_shape}").format(
+                image_shape=image.shape))
     check_choice(method, "method", METHODS)
     x, y = np.broadcast_arrays(*_grid_centres(_as_gdal(dst_transform, "dst_transform"),
                                               as_shape(dst_shape, "dst_shape")))
@@ -2010,7 +2033,7 @@ def positional_error(image, truth, step=64, window=64, nodata=0, upsample=100, t
     points, shifts = measure_shifts(truth, image, step, window, upsample=upsample, taper=taper,
                                     valid=valid)
     if len(points) == 0:
-        raise GridError("no check-point window lies wholly inside the image's footprint; "
-                        "use a smaller window or step")
+        raise GridError(_("no check-point window lies wholly inside the image's footprint; use "
+                          "a smaller window or step"))
     return pd.DataFrame({"col": points[:, 0], "row": points[:, 1], "dcol": shifts[:, 0],
                          "drow": shifts[:, 1], "error": np.hypot(shifts[:, 0], shifts[:, 1])})

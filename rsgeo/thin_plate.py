@@ -69,7 +69,7 @@ from numba import njit, prange, types
 from numba.extending import intrinsic
 
 from ._checks import as_integer, as_points
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import GCPError
 
 __all__ = ["FULL", "GDAL_FAST_LOG", "GDAL_INVERSE", "GDAL_STEPS", "ONE_DIMENSIONAL", "evaluate",
@@ -313,7 +313,7 @@ def pack_inverse(spline, start, max_steps=GDAL_STEPS):
     ValueError
         If ``max_steps`` is not an integer >= 0.
     """
-    steps = as_integer(max_steps, "max_steps", low=0, why="Newton steps at most")
+    steps = as_integer(max_steps, "max_steps", low=0, why=N_("Newton steps at most"))
     spline = np.asarray(spline, dtype=np.float64)
     start = np.asarray(start, dtype=np.float64)
     return np.concatenate([[GDAL_INVERSE, steps, len(spline)], spline, start])

@@ -30,7 +30,7 @@ from threadpoolctl import threadpool_limits
 
 from . import accuracy, gcp, resample, transforms
 from ._checks import as_image, as_integer, as_number, as_shape, check_choice
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import GCPError, GridError, ImageError, ModelError
 
 __all__ = [
@@ -129,25 +129,29 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
     reference = np.asarray(reference, dtype=np.float64)
     moving = np.asarray(moving, dtype=np.float64)
     if reference.shape != moving.shape or reference.ndim != 2:
-        raise ImageError(f"reference and moving must be 2-D images of the same shape, got "
-                         f"{reference.shape} and {moving.shape}")
+        raise ImageError(_("reference and moving must be 2-D images of the same shape, "
+                           "got {reference_shape} and {moving_shape}").format(
+                reference_shape=reference.shape, moving_shape=moving.shape))
     if not (np.isfinite(reference).all() and np.isfinite(moving).all()):
-        raise ImageError("reference and moving hold NaN or infinite values; crop or fill them "
-                         "first")
+        raise ImageError(_("reference and moving hold NaN or infinite values; crop or fill them "
+                           "first"))
     step = as_integer(step, "step", 1, None, _("a whole number of pixels"))
     upsample = as_integer(upsample, "upsample", 1, None, _("1 / the sub-pixel precision"))
     window = as_integer(window, "window", MIN_WINDOW, None,
                         _("a correlation window needs at least {n} × {n} pixels").format(
                             n=MIN_WINDOW))
     if window > min(reference.shape):
-        raise GridError(f"window ({window} px) is larger than the images {reference.shape}; "
-                        "use a window no larger than the smaller side")
+        raise GridError(_("window ({window} px) is larger than the images "
+                          "{reference_shape}; use a window no larger than the smaller "
+                          "side").format(window=window, reference_shape=reference.shape))
     if valid is not None:
         valid = np.asarray(valid)
         if valid.shape != reference.shape or valid.dtype != bool:
-            raise ImageError(f"valid must be a boolean mask of the images' shape "
-                             f"{reference.shape}, "
-                             f"got {valid.dtype} of shape {valid.shape}")
+            raise ImageError(_("valid must be a boolean mask of the images' shape "
+                               "{reference_shape}, got {valid_dtype} of shape "
+                               "{valid_shape}").format(
+                    reference_shape=reference.shape, valid_dtype=valid.dtype,
+                    valid_shape=valid.shape))
     half = window // 2
     if taper:
         from skimage.filters import window as hann
@@ -328,19 +332,23 @@ def offsets_against_reference(image, transform, reference, reference_transform, 
     image = np.asarray(image, dtype=np.float64)
     reference = np.asarray(reference, dtype=np.float64)
     if image.ndim != 2 or reference.ndim != 2:
-        raise ImageError(f"image and reference must be single bands (2-D), got shapes "
-                         f"{image.shape} and {reference.shape}")
+        raise ImageError(_("image and reference must be single bands (2-D), got shapes "
+                           "{image_shape} and {reference_shape}").format(
+                image_shape=image.shape, reference_shape=reference.shape))
     for name, t in (("transform", transform), ("reference_transform", reference_transform)):
         accuracy._check_transform(t, name)
         if t.b != 0 or t.d != 0 or t.a <= 0 or t.e >= 0:
-            raise GridError(f"{name} must be north-up (no rotation terms), got {t!r}")
+            raise GridError(_("{name} must be north-up (no rotation terms), got {t!r}").format(
+                    name=name, t=t))
     ratio = transform.a / reference_transform.a
     factor = int(round(ratio))
     if (factor < 1 or abs(ratio - factor) > 1e-6
             or abs(-transform.e / -reference_transform.e - factor) > 1e-6):
-        raise GridError(f"the image's pixel ({transform.a}, {-transform.e}) must be a whole "
-                        f"multiple "
-                        f"of the reference's ({reference_transform.a}, {-reference_transform.e})")
+        raise GridError(_("the image's pixel ({transform_a}, {value}) must be a whole "
+                          "multiple of the reference's ({reference_transform_a}, "
+                          "{value2})").format(
+                transform_a=transform.a, value=-transform.e,
+                reference_transform_a=reference_transform.a, value2=-reference_transform.e))
     rows, cols = (n // factor * factor for n in reference.shape)
     blocks = reference[:rows, :cols].reshape(rows // factor, factor, cols // factor,
                                              factor).mean(axis=(1, 3))
@@ -351,12 +359,13 @@ def offsets_against_reference(image, transform, reference, reference_transform, 
     inside = ((block_cols >= 0.5) & (block_rows >= 0.5) & (block_cols <= blocks.shape[1] - 0.5)
               & (block_rows <= blocks.shape[0] - 0.5))
     if not inside.any():
-        raise GridError("the image and the reference do not overlap")
+        raise GridError(_("the image and the reference do not overlap"))
     used_rows, used_cols = np.flatnonzero(inside.any(axis=1)), np.flatnonzero(inside.any(axis=0))
     box = np.s_[used_rows[0]:used_rows[-1] + 1, used_cols[0]:used_cols[-1] + 1]
     if not inside[box].all() or min(inside[box].shape) < window:
-        raise GridError(f"the overlap {inside[box].shape} must be a full rectangle of at least "
-                        f"{window} × {window} image pixels")
+        raise GridError(_("the overlap {shape} must be a full rectangle of at least "
+                          "{window} × {window} image pixels").format(
+                shape=inside[box].shape, window=window))
     sampled = map_coordinates(blocks, [block_rows[box] - 0.5, block_cols[box] - 0.5], order=1)
     points, shifts = measure_shifts(sampled, image[box], step=step, window=window, taper=True)
     return points + [used_cols[0], used_rows[0]], -shifts
@@ -459,16 +468,21 @@ def robust_fit(src, dst, kind="polynomial", order=1, threshold=1.0, max_trials=1
     dst = np.asarray(dst, dtype=np.float64)
     model_class = ransac_model(kind, order)
     if len(src) < model_class.min_samples:
-        what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
-        raise GCPError(f"{what} needs at least {model_class.min_samples} tie points, "
-                       f"got {len(src)}")
-    as_number(threshold, "threshold", 0, None, "a residual in dst units")
+        raise GCPError((_("an order-{order} polynomial needs at least {min_samples} tie points, "
+                          "got {n_src}") if kind == "polynomial" else
+                        _("a {kind!r} model needs at least {min_samples} tie points, got "
+                          "{n_src}")).format(order=order, kind=kind,
+                                             min_samples=model_class.min_samples,
+                                             n_src=len(src)))
+    as_number(threshold, "threshold", 0, None, N_("a residual in dst units"))
     model, inliers = ransac((src, dst), model_class, model_class.min_samples, threshold,
                             max_trials=int(max_trials), rng=np.random.default_rng(seed))
     if not model or inliers is None or inliers.sum() < model_class.min_samples:
-        raise GCPError(f"RANSAC found no {kind} model supported by {model_class.min_samples} "
-                       f"or more of the {len(src)} tie points (collinear or all "
-                       "inconsistent); more, better spread tie points are needed")
+        raise GCPError(_("RANSAC found no {kind} model supported by "
+                         "{model_class_min_samples} or more of the {n_src} tie points "
+                         "(collinear or all inconsistent); more, better spread tie "
+                         "points are needed").format(
+                kind=kind, model_class_min_samples=model_class.min_samples, n_src=len(src)))
     return transforms.fit_transform(src[inliers], dst[inliers], kind, order), inliers
 
 
@@ -610,10 +624,11 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     moving = as_image(moving, "moving").astype(np.float64)
     for name, image in (("reference", reference), ("moving", moving)):
         if image.ndim != 2:
-            raise ImageError(f"{name} must be one band (2-D), got shape {image.shape}")
+            raise ImageError(_("{name} must be one band (2-D), got shape {image_shape}").format(
+                    name=name, image_shape=image.shape))
         if not np.isfinite(image).all():
-            raise ImageError(f"{name} holds NaN or infinite values; fill them and mark them "
-                             "with valid=False")
+            raise ImageError(_("{name} holds NaN or infinite values; fill them and mark "
+                               "them with valid=False").format(name=name))
     check_choice(method, "method", ("nearest", "bilinear", "cubic"))
     iterations = as_integer(iterations, "iterations", 1, None, _("a number of passes"))
     spacing = as_integer(spacing, "spacing", 1, None, _("a whole number of pixels"))
@@ -636,8 +651,9 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     else:
         valid = np.asarray(valid, dtype=bool)
         if valid.shape != reference.shape:
-            raise ImageError(f"valid must have the reference's shape {reference.shape}, got "
-                             f"{valid.shape}")
+            raise ImageError(_("valid must have the reference's shape "
+                               "{reference_shape}, got {valid_shape}").format(
+                    reference_shape=reference.shape, valid_shape=valid.shape))
     needed = ransac_model(kind, order).min_samples
     passes = []
     for _pass in range(iterations):
@@ -650,9 +666,9 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
             resampled = np.full(reference.shape, np.nan)
         inside = np.isfinite(resampled)
         if not inside.any():
-            raise GridError("the images do not overlap: the estimate puts no reference pixel "
-                            "inside the moving image; give an initial estimate (map -> moving "
-                            "image) that roughly aligns them")
+            raise GridError(_("the images do not overlap: the estimate puts no reference pixel "
+                              "inside the moving image; give an initial estimate (map -> moving "
+                              "image) that roughly aligns them"))
         with _one_blas_thread():
             points, shifts, table = measure_shifts(
                 reference, np.where(inside, resampled, 0.0), spacing, window, upsample, taper,
@@ -680,14 +696,16 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
         if good.sum() < needed:
             counts = ", ".join(f"{n} {r}" for r, n in zip(*np.unique(
                 reason[reason != ""].astype(str), return_counts=True)))
-            what = f"an order-{order} polynomial" if kind == "polynomial" else f"a {kind!r} model"
             hint = (_("smooth windows pull phase correlation towards zero shift; use "
                       "taper=True") if (reason == "smooth").any() else
                     _("use smaller spacing, larger windows or a better initial estimate"))
-            raise GCPError(_("{good} reliable tie points of {total} windows ({counts}); {what} "
-                             "needs at least {needed}: {hint}").format(
+            raise GCPError((_("{good} reliable tie points of {total} windows ({counts}); an "
+                              "order-{order} polynomial needs at least {needed}: {hint}")
+                            if kind == "polynomial" else
+                            _("{good} reliable tie points of {total} windows ({counts}); a "
+                              "{kind!r} model needs at least {needed}: {hint}")).format(
                 good=good.sum(), total=len(points), counts=counts or _("none rejected"),
-                what=what, needed=needed, hint=hint))
+                order=order, kind=kind, needed=needed, hint=hint))
         estimate = transforms.fit_transform(map_xy[good], image_xy[good], kind, order)
         if passes[-1]["median shift (px)"] < 0.5 / upsample:
             break
@@ -766,11 +784,13 @@ def feature_tiepoints(reference, moving, detector="sift", reference_transform=No
     for name, image in (("reference", reference), ("moving", moving)):
         image = as_image(image, name).astype(np.float64)
         if image.ndim != 2:
-            raise ImageError(f"{name} must be one band (2-D), got shape {image.shape}")
+            raise ImageError(_("{name} must be one band (2-D), got shape {image_shape}").format(
+                    name=name, image_shape=image.shape))
         if not np.isfinite(image).all() or image.std() == 0:
-            raise ImageError(f"{name} is constant or holds NaN: no keypoint can be found in it")
+            raise ImageError(_("{name} is constant or holds NaN: no keypoint can be "
+                               "found in it").format(name=name))
         images.append(image)
-    as_number(max_ratio, "max_ratio", 0, 1, "a ratio of descriptor distances")
+    as_number(max_ratio, "max_ratio", 0, 1, N_("a ratio of descriptor distances"))
     transform = _transform(reference_transform)
     found = []
     for image in images:
@@ -785,12 +805,14 @@ def feature_tiepoints(reference, moving, detector="sift", reference_transform=No
     else:
         matches = np.empty((0, 2), int)
     if len(matches) < needed:
-        raise GCPError(f"{detector.upper()} found {len(ref_xy)} and {len(mov_xy)} keypoints "
-                       f"and {len(matches)} matches; the {kind} model needs at least "
-                       f"{needed}: the images may not overlap or may look too different")
+        raise GCPError(_("{upper} found {n_ref_xy} and {n_mov_xy} keypoints and "
+                         "{n_matches} matches; the {kind} model needs at least "
+                         "{needed}: the images may not overlap or may look too different").format(
+                upper=detector.upper(), n_ref_xy=len(ref_xy), n_mov_xy=len(mov_xy),
+                n_matches=len(matches), kind=kind, needed=needed))
     map_xy = _to_map(transform, ref_xy[matches[:, 0]])
     image_xy = mov_xy[matches[:, 1]]
-    _, inliers = robust_fit(map_xy, image_xy, kind, order, threshold, max_trials, seed)
+    inliers = robust_fit(map_xy, image_xy, kind, order, threshold, max_trials, seed)[1]
     return gcp.GCPSet(map_xy[inliers], image_xy[inliers],
                       ids=[f"{detector.upper()}{k + 1:03d}" for k in range(int(inliers.sum()))],
                       n_keypoints=(len(ref_xy), len(mov_xy)), n_matches=len(matches),
@@ -870,7 +892,8 @@ def register(gcps, kind="polynomial", order=1, tolerance=1.0, min_gcps=None):
     ([True, True, True, True, False], 0.0)
     """
     if not isinstance(gcps, gcp.GCPSet):
-        raise TypeError(f"gcps must be a rsgeo.gcp.GCPSet, got {type(gcps).__name__}")
+        raise TypeError(_("gcps must be a rsgeo.gcp.GCPSet, got {kind}").format(
+                kind=type(gcps).__name__))
     map_xy, image_xy = gcps.map_xy[gcps.enabled], gcps.image_xy[gcps.enabled]
     order = order if kind == "polynomial" else None
     rms_all = transforms.fit_transform(map_xy, image_xy, kind, order).rms(map_xy, image_xy)
@@ -920,12 +943,13 @@ def grid_error(model, truth, transform, shape, step=10):
     """
     rows, cols = as_shape(shape)
     if int(step) != step or step < 1:
-        raise GridError(f"step must be a positive whole number of pixels, got {step!r}")
+        raise GridError(_("step must be a positive whole number of pixels, got {step!r}").format(
+                step=step))
     grid_rows, grid_cols = np.mgrid[0:rows:int(step), 0:cols:int(step)] + 0.5
     map_xy = _to_map(transform, np.column_stack([grid_cols.ravel(), grid_rows.ravel()]))
     difference = _apply(model, map_xy) - _apply(truth, map_xy)
     if not np.isfinite(difference).all():
-        raise ModelError("a model gave NaN or infinite positions on the check grid")
+        raise ModelError(_("a model gave NaN or infinite positions on the check grid"))
     return float(np.sqrt(np.mean(np.sum(difference**2, axis=1))))
 
 
@@ -968,10 +992,11 @@ def coarsen(image, transform, factor):
 
     image = as_image(image, "image").astype(np.float64)
     if image.ndim != 2:
-        raise ImageError(f"image must be one band (2-D), got shape {image.shape}")
+        raise ImageError(_("image must be one band (2-D), got shape {image_shape}").format(
+                image_shape=image.shape))
     if int(factor) != factor or not 1 <= factor <= min(image.shape):
-        raise GridError(f"factor must be a whole number from 1 to {min(image.shape)}, "
-                        f"got {factor!r}")
+        raise GridError(_("factor must be a whole number from 1 to {min}, got {factor!r}").format(
+                min=min(image.shape), factor=factor))
     factor = int(factor)
     rows, cols = (n // factor * factor for n in image.shape)
     blocks = image[:rows, :cols].reshape(rows // factor, factor, cols // factor, factor)
@@ -1017,7 +1042,8 @@ def perturb_transform(transform, shift=(0.0, 0.0), degrees=0.0, centre=None):
     accuracy._check_transform(transform, "transform")
     values = [*np.ravel(shift), degrees] + ([] if centre is None else list(np.ravel(centre)))
     if not np.isfinite(np.asarray(values, dtype=float)).all():
-        raise GridError(f"shift, degrees and centre must be finite numbers, got {values}")
+        raise GridError(_("shift, degrees and centre must be finite numbers, got "
+                          "{values}").format(values=values))
     cx, cy = transform @ (0, 0) if centre is None else centre
     return (affine.Affine.translation(*shift) @ affine.Affine.translation(cx, cy)
             @ affine.Affine.rotation(degrees) @ affine.Affine.translation(-cx, -cy) @ transform)

@@ -99,7 +99,7 @@ from ._checks import (
     as_shape,
     check_choice,
 )
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import GridError, ImageError
 from .resample import (
     _GDAL_INDEX_EPSILON,
@@ -350,7 +350,7 @@ def source_window(mapping, tile_shape, tile_transform, src_shape, method="neares
     _check_mapping(mapping)
     scale = as_scale(scale)
     error_threshold = as_number(error_threshold, "error_threshold", low=0.0,
-                                why="source pixels; 0 for exact positions")
+                                why=N_("source pixels; 0 for exact positions"))
     return _window_and_span(mapping, tile_shape, tile_transform, src_shape, method, scale,
                             error_threshold)[0]
 
@@ -580,7 +580,7 @@ def warp_tiled(source, mapping, shape, transform=None, tile_shape=(1024, 1024),
     _check_mapping(mapping)
     num_threads = as_num_threads(num_threads)
     error_threshold = as_number(error_threshold, "error_threshold", low=0.0,
-                                why="source pixels; 0 for exact positions")
+                                why=N_("source pixels; 0 for exact positions"))
     source = _open_source(source)
     try:
         nodata = as_nodata(nodata, source.dtype)
@@ -760,7 +760,7 @@ def warp_dask(source_path, mapping, shape, transform=None, tile_shape=(1024, 102
     check_choice(method, "method", WARP_METHODS)
     _check_mapping(mapping)
     error_threshold = as_number(error_threshold, "error_threshold", low=0.0,
-                                why="source pixels; 0 for exact positions")
+                                why=N_("source pixels; 0 for exact positions"))
     if not isinstance(source_path, (str, os.PathLike)):
         raise TypeError(_(
             "source_path must be the path of a raster file (each block opens it), got "

@@ -31,7 +31,7 @@ from math import comb
 import numpy as np
 
 from ._checks import as_integer, as_number, as_points
-from ._i18n import _
+from ._i18n import N_, _
 from .errors import GCPError, ModelError
 
 
@@ -99,7 +99,8 @@ class GeometricModel:
         NotImplementedError
             In the base class: a model defines its own mapping.
         """
-        raise NotImplementedError(f"{type(self).__name__} does not define its mapping")
+        raise NotImplementedError(_("{kind} does not define its mapping").format(
+                kind=type(self).__name__))
 
     def inverse(self):
         """The model of the other direction (dst -> src).
@@ -113,7 +114,8 @@ class GeometricModel:
         NotImplementedError
             In the base class: a model defines its own inverse.
         """
-        raise NotImplementedError(f"{type(self).__name__} does not define its inverse")
+        raise NotImplementedError(_("{kind} does not define its inverse").format(
+                kind=type(self).__name__))
 
     def outside_gcps(self, points):
         """How far each point lies outside the GCPs' convex hull, in GCP extents (0 inside).
@@ -203,7 +205,8 @@ def _same_points(src, dst):
     src = as_points(src, "src")
     dst = as_points(dst, "dst")
     if len(src) != len(dst):
-        raise GCPError(f"src and dst must hold the same points, got {len(src)} and {len(dst)}")
+        raise GCPError(_("src and dst must hold the same points, got {n_src} and {n_dst}").format(
+                n_src=len(src), n_dst=len(dst)))
     return src, dst
 
 
@@ -212,14 +215,15 @@ def _residual_vectors(model, src, dst):
     src, dst = _same_points(src, dst)
     predicted = np.asarray(model(src), dtype=np.float64)
     if predicted.shape != dst.shape:
-        raise GCPError(f"the model must return an (n, 2) array, got shape {predicted.shape}")
+        raise GCPError(_("the model must return an (n, 2) array, got shape "
+                         "{predicted_shape}").format(predicted_shape=predicted.shape))
     return predicted, np.hypot(*(predicted - dst).T)
 
 
 def _rms_of(difference):
     """The lecture's RMS of (n, 2) differences, sqrt(mean(dx² + dy²)); rsgeo.accuracy's too."""
     if len(difference) == 0:
-        raise GCPError("predicted and observed hold no points; the RMS needs at least one")
+        raise GCPError(_("predicted and observed hold no points; the RMS needs at least one"))
     return float(np.sqrt(np.mean(np.sum(difference ** 2, axis=1))))
 
 
@@ -378,8 +382,8 @@ def newton_inverse(model, start, tolerance, max_iterations, failure, floor=0.0):
     array([[3., 7.]])
     """
     extent = float(np.abs(model.dst - model.dst.mean(axis=0)).max()) or 1.0
-    relative = as_number(tolerance, "tolerance", low=0, why="relative to the dst extent")
-    limit = max(relative * extent, as_number(floor, "floor", low=0, why="dst units"))
+    relative = as_number(tolerance, "tolerance", low=0, why=N_("relative to the dst extent"))
+    limit = max(relative * extent, as_number(floor, "floor", low=0, why=N_("dst units")))
 
     def solve(targets):
         points = start(targets)
@@ -412,10 +416,10 @@ _TERMS = ((0, 0), (1, 0), (0, 1), (1, 1), (2, 0), (0, 2), (2, 1), (1, 2), (3, 0)
 
 
 def _check_order(order):
-    order = as_integer(order, "order", why="a polynomial's degree: 1, 2 or 3")
+    order = as_integer(order, "order", why=N_("a polynomial's degree: 1, 2 or 3"))
     if order not in ORDERS:
-        raise GCPError(f"polynomial order must be 1, 2 or 3 (the lecture's degrees), "
-                       f"got {order!r}")
+        raise GCPError(_("polynomial order must be 1, 2 or 3 (the lecture's degrees), "
+                         "got {order!r}").format(order=order))
     return int(order)
 
 
@@ -676,12 +680,12 @@ class PolynomialModel(GeometricModel):
         """
         def failure(failed, targets):
             first = targets[np.flatnonzero(failed)[0]]
-            return (f"the order-{self.order} polynomial has no inverse at {failed.sum()} of "
-                    f"{len(targets)} points (first: {first.tolist()}): Newton's method did not "
-                    "converge, so the polynomial folds or is singular there; keep the points "
-                    "inside the GCPs' area")
+            return _("the order-{order} polynomial has no inverse at {count} of {n} points "
+                     "(first: {first}): Newton's method did not converge, so the polynomial "
+                     "folds or is singular there; keep the points inside the GCPs' area").format(
+                order=self.order, count=failed.sum(), n=len(targets), first=first.tolist())
 
-        reach = as_number(reach, "reach", low=0, why="GCP extents beyond the GCPs' hull")
+        reach = as_number(reach, "reach", low=0, why=N_("GCP extents beyond the GCPs' hull"))
         newton = newton_inverse(self, self.reverse(), tolerance, max_iterations, failure)
         if self.order == 1:
             return newton
@@ -726,9 +730,10 @@ class PolynomialModel(GeometricModel):
         """
         n, m = len(self.src), self.coefficients.shape[1]
         if n <= m:
-            raise GCPError(f"standard errors of an order-{self.order} model need more than {m} "
-                           f"GCPs (one redundant GCP at least), got {n}")
-        matrix, _, _ = _normalised_design(self.src, self.order, self.origin, self.scale)
+            raise GCPError(_("standard errors of an order-{order} model need more than "
+                             "{m} GCPs (one redundant GCP at least), got {n}").format(
+                    order=self.order, m=m, n=n))
+        matrix = _normalised_design(self.src, self.order, self.origin, self.scale)[0]
         residual = self(self.src) - self.dst
         variance = np.sum(residual**2, axis=0) / (n - m)            # s² for u and for v
         unscaled = np.diag(np.linalg.inv(matrix.T @ matrix))        # on the scaled terms
@@ -786,7 +791,8 @@ class PolynomialModel(GeometricModel):
             If ``names`` is not two strings.
         """
         if len(names) != 2 or not all(isinstance(name, str) for name in names):
-            raise GCPError(f"names must be two strings (one letter per output), got {names!r}")
+            raise GCPError(_("names must be two strings (one letter per output), got "
+                             "{names!r}").format(names=names))
         table = {}
         for row, letter in enumerate(names):
             for index, term in enumerate(term_names(self.order)):
@@ -918,10 +924,11 @@ class MatrixModel(GeometricModel):
     def __init__(self, matrix, kind, src=None, dst=None):
         matrix = np.asarray(matrix, dtype=np.float64)
         if matrix.shape != (3, 3) or not np.isfinite(matrix).all():
-            raise GCPError(f"matrix must be a finite 3×3 array, got shape {matrix.shape}")
+            raise GCPError(_("matrix must be a finite 3×3 array, got shape "
+                             "{matrix_shape}").format(matrix_shape=matrix.shape))
         if kind not in self.KINDS:
-            raise GCPError(f"a matrix model's kind must be one of {list(self.KINDS)}, "
-                           f"got {kind!r}")
+            raise GCPError(_("a matrix model's kind must be one of {KINDS}, got {kind!r}").format(
+                    KINDS=list(self.KINDS), kind=kind))
         self.matrix = matrix / matrix[2, 2]
         self.kind = kind
         self.n_parameters = n_parameters(kind)
@@ -950,8 +957,8 @@ class MatrixModel(GeometricModel):
         homogeneous = np.column_stack([points, np.ones(len(points))]) @ self.matrix.T
         w = homogeneous[:, 2]
         if (np.abs(w) < 1e-12).any():
-            raise ModelError("some points lie on the projective model's vanishing line and map "
-                             "to infinity; keep the points inside the GCPs' area")
+            raise ModelError(_("some points lie on the projective model's vanishing line and "
+                               "map to infinity; keep the points inside the GCPs' area"))
         return homogeneous[:, :2] / w[:, np.newaxis]
 
     def kernel_form(self):
@@ -978,7 +985,7 @@ class MatrixModel(GeometricModel):
             If the matrix is singular (the model collapses the plane).
         """
         if abs(np.linalg.det(self.matrix)) < 1e-300:
-            raise ModelError("the model's matrix is singular and has no inverse")
+            raise ModelError(_("the model's matrix is singular and has no inverse"))
         return MatrixModel(np.linalg.inv(self.matrix), self.kind, self.dst, self.src)
 
     def __repr__(self):
@@ -991,8 +998,9 @@ def _fit_linear(src, dst):
     for axis in range(2):
         x = src[:, axis] - src[:, axis].mean()
         if not np.abs(x).max() > 1e-12 * max(1.0, np.abs(src[:, axis]).max()):
-            raise GCPError(f"a 'linear' model needs GCPs at two different {'xy'[axis]} "
-                           "coordinates at least; spread the GCPs over the image")
+            raise GCPError(_("a 'linear' model needs GCPs at two different {value} "
+                             "coordinates at least; spread the GCPs over the image").format(
+                    value='xy'[axis]))
         scale = float(x @ (dst[:, axis] - dst[:, axis].mean()) / (x @ x))
         matrix[axis, axis] = scale
         matrix[axis, 2] = dst[:, axis].mean() - scale * src[:, axis].mean()
@@ -1008,8 +1016,8 @@ def _fit_helmert(src, dst):
     p, q = src - src_origin, dst - dst_origin
     spread = float((p**2).sum())
     if not spread > 0 or np.linalg.matrix_rank(p, tol=1e-12 * np.sqrt(spread)) < 1:
-        raise GCPError("a 'helmert' model needs at least two distinct GCPs; "
-                       "these all fall on the same point")
+        raise GCPError(_("a 'helmert' model needs at least two distinct GCPs; these all fall on "
+                         "the same point"))
     flip = 1.0 if np.linalg.det(p.T @ q) >= 0 else -1.0
     q = q * [1.0, flip]
     a = float((p[:, 0] * q[:, 0] + p[:, 1] * q[:, 1]).sum() / spread)
@@ -1028,9 +1036,9 @@ def _fit_projective(src, dst):
         centred = points - points.mean(axis=0)
         singular = np.linalg.svd(centred, compute_uv=False)
         if not singular[1] > 1e-9 * max(singular[0], 1e-300):
-            raise GCPError(f"the {name} points are collinear (or coincide): a 'projective' "
-                           "model needs at least 4 GCPs, no three of them on one line, "
-                           "spread over the image")
+            raise GCPError(_("the {name} points are collinear (or coincide): a "
+                             "'projective' model needs at least 4 GCPs, no three of "
+                             "them on one line, spread over the image").format(name=name))
     src_norm, dst_norm = _normaliser(src), _normaliser(dst)
     s = np.column_stack([src, np.ones(len(src))]) @ src_norm.T
     d = np.column_stack([dst, np.ones(len(dst))]) @ dst_norm.T
@@ -1038,14 +1046,14 @@ def _fit_projective(src, dst):
     rows_u = np.hstack([s, zero, -s * d[:, :1]])
     rows_v = np.hstack([zero, s, -s * d[:, 1:2]])
     system = np.vstack([rows_u, rows_v])
-    _, singular, vt = np.linalg.svd(system)
+    singular, vt = np.linalg.svd(system)[1:]
     if len(singular) >= 8 and not singular[7] > 1e-10 * singular[0]:
-        raise GCPError("the GCPs do not determine a 'projective' model: three of the four "
-                       "are collinear or points repeat; use 4 GCPs, no three on one line")
+        raise GCPError(_("the GCPs do not determine a 'projective' model: three of the four are "
+                         "collinear or points repeat; use 4 GCPs, no three on one line"))
     h = vt[-1].reshape(3, 3)
     if abs(h[2, 2]) < 1e-12 * np.abs(h).max():
-        raise GCPError("the GCPs put the projective model's vanishing line through their "
-                       "centre; they are degenerate (check for swapped points)")
+        raise GCPError(_("the GCPs put the projective model's vanishing line through their "
+                         "centre; they are degenerate (check for swapped points)"))
     matrix = np.linalg.inv(dst_norm) @ h @ src_norm
     return MatrixModel(matrix, "projective", src, dst)
 
@@ -1270,7 +1278,7 @@ class _TPSInverse(InverseModel):
                                                             max_iterations)
         self.packed.flags.writeable = False
         self._tolerance = as_number(tolerance, "tolerance", low=0,
-                                    why="relative to the dst extent")
+                                    why=N_("relative to the dst extent"))
         self._max_iterations = int(self.packed[1])
         super().__init__(forward, self._solve_points)
 
@@ -1358,8 +1366,8 @@ def _fit_tps(src, dst):
                 gap=float(np.hypot(*(dst[pairs[0, 0]] - dst[pairs[0, 1]]))), near=_TPS_NEAR))
     centred = (src - src.mean(axis=0)) / (np.abs(src - src.mean(axis=0)).max() or 1.0)
     if np.linalg.matrix_rank(np.column_stack([np.ones(len(src)), centred]), tol=1e-9) < 3:
-        raise GCPError("a 'tps' model needs at least 3 GCPs that are not collinear (its affine "
-                       "part is fixed by them); spread the GCPs over the image")
+        raise GCPError(_("a 'tps' model needs at least 3 GCPs that are not collinear (its "
+                         "affine part is fixed by them); spread the GCPs over the image"))
     return TPSModel(src, dst, skipped)
 
 
@@ -1443,19 +1451,19 @@ def registered(kind, order=None, caller="min_gcps"):
     """
     if not isinstance(kind, str):
         if order is not None:
-            raise GCPError(f"give the polynomial's order once: {caller}(order) or "
-                           f"{caller}('polynomial', order)")
+            raise GCPError(_("give the polynomial's order once: {caller}(order) or "
+                             "{caller}('polynomial', order)").format(caller=caller))
         kind, order = "polynomial", kind
     if kind not in KINDS:
-        raise GCPError(f"unknown transformation kind {kind!r}; choose one of "
-                       f"{', '.join(map(repr, KINDS))}")
+        raise GCPError(_("unknown transformation kind {kind!r}; choose one of {listed}").format(
+                kind=kind, listed=', '.join(map(repr, KINDS))))
     if kind == "polynomial":
         if order is None:
-            raise GCPError("kind 'polynomial' needs an order: 1, 2 or 3")
+            raise GCPError(_("kind 'polynomial' needs an order: 1, 2 or 3"))
         order = _check_order(order)
     elif order is not None:
-        raise GCPError(f"kind {kind!r} has no order (got order={order!r}); "
-                       "only 'polynomial' takes one")
+        raise GCPError(_("kind {kind!r} has no order (got order={order!r}); only "
+                         "'polynomial' takes one").format(kind=kind, order=order))
     return next(entry for entry in REGISTRY if (entry.kind, entry.order) == (kind, order))
 
 
@@ -1529,8 +1537,8 @@ def n_parameters(kind, order=None, n_gcps=None):
     if entry.n_parameters is not None:
         return entry.n_parameters
     if n_gcps is None:
-        raise GCPError(f"the parameters of a {entry.kind!r} model grow with its GCPs; "
-                       "give n_gcps")
+        raise GCPError(_("the parameters of a {entry_kind!r} model grow with its GCPs; "
+                         "give n_gcps").format(entry_kind=entry.kind))
     return 2 * (int(n_gcps) + 3)
 
 
@@ -1540,12 +1548,13 @@ def _fit_inputs(src, dst, kind, order):
     dst = as_points(dst, "dst")
     entry = registered(kind, order, "fit_transform")
     if len(src) != len(dst):
-        raise GCPError(f"src and dst must hold the same GCPs, got {len(src)} and {len(dst)} "
-                       "points")
+        raise GCPError(_("src and dst must hold the same GCPs, got {n_src} and {n_dst} "
+                         "points").format(n_src=len(src), n_dst=len(dst)))
     if len(src) < entry.min_gcps:
-        what = (f"order-{entry.order} polynomial" if entry.kind == "polynomial"
-                else f"{entry.kind!r} model")
-        raise GCPError(f"a {what} needs at least {entry.min_gcps} GCPs, got {len(src)}")
+        raise GCPError((_("an order-{order} polynomial needs at least {min_gcps} GCPs, got "
+                          "{n_src}") if entry.kind == "polynomial" else
+                        _("a {kind!r} model needs at least {min_gcps} GCPs, got {n_src}")).format(
+                order=entry.order, kind=entry.kind, min_gcps=entry.min_gcps, n_src=len(src)))
     return src, dst, entry
 
 

@@ -17,7 +17,7 @@ def rsgeo_speaks_english():
 # run): a change to one rsgeo module needs `-m "not notebooks and not browser"`.
 MODULE_MARKERS = {
     "notebooks": {"test_notebooks", "test_student_edition", "test_prose_numbers", "test_grade",
-                  "test_readme", "test_i18n"},
+                  "test_readme", "test_i18n", "test_book_html", "test_portuguese_book"},
     "browser": {"test_browser", "test_pdf"},
     "gdal": {"test_gcp", "test_georef", "test_resample", "test_terrain", "test_transforms",
              "test_data", "test_gdal_autotest_warp", "test_fuzz"},

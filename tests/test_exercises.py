@@ -586,7 +586,7 @@ SPECIFIC_FORMS = [
     ("segment", [2, 3], "ONE segment"),
     ("bias_shift", None, "did your function return its value"),
     ("bias_shift", "0.1 -1.3", "text"),
-    ("bias_shift", [0.1], "holds 1 value"),
+    ("bias_shift", [0.1], "holds one value"),
     ("bias_shift", [0.1, np.nan], "NaN"),
 ]
 

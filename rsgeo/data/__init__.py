@@ -231,9 +231,10 @@ def path(name):
         return _FOLDER / files[name]
     if name in files.values():
         return _FOLDER / name
-    raise DataError(f"no shipped file named {name!r}; datasets: {', '.join(available())}; "
-                    f"GCP sets: {', '.join(available_gcps())}; "
-                    f"files: {', '.join(sorted(files.values()))}")
+    raise DataError(_("no shipped file named {name!r}; datasets: {listed}; GCP sets: "
+                      "{listed2}; files: {listed3}").format(
+            name=name, listed=', '.join(available()), listed2=', '.join(available_gcps()),
+            listed3=', '.join(sorted(files.values()))))
 
 
 def load(name):
@@ -256,8 +257,10 @@ def load(name):
     import rasterio
 
     if name not in _RASTERS:
-        raise DataError(f"unknown dataset {name!r}; available: {', '.join(available())}; "
-                        f"terrain: {', '.join(available_terrain())}")
+        raise DataError(_("unknown dataset {name!r}; available: {listed}; terrain: "
+                          "{listed2}").format(
+                name=name, listed=', '.join(available()),
+                listed2=', '.join(available_terrain())))
     file = _FOLDER / _RASTERS[name][0]
     with rasterio.open(file) as dataset:
         array = dataset.read()
@@ -322,7 +325,8 @@ def load_gcps(name):
         For an unknown name; the message lists the available ones.
     """
     if name not in _GCP_FILES:
-        raise DataError(f"unknown GCP set {name!r}; available: {', '.join(available_gcps())}")
+        raise DataError(_("unknown GCP set {name!r}; available: {listed}").format(
+                name=name, listed=', '.join(available_gcps())))
     file, notes = _GCP_FILES[name]
     gcps = read_points(_FOLDER / file)
     gcps.notes = list(notes)

@@ -29,7 +29,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from .._i18n import N_, _
+from .._i18n import N_, _, prose_number
 from ..errors import RsgeoError
 
 __all__ = ["ExerciseNotSolved", "Verdict", "Mistake", "Declaration", "declare", "declaration",
@@ -278,7 +278,7 @@ class Declaration:
                  if not _near(float(value), expected, self.rtol, scale)]   # no mistake if true
         if _near(value, expected, self.rtol, scale) or accepts_rounded(value, expected, wrong):
             return Verdict(True, _("`{name}` = {value:.6g}{units}.").format(
-                name=name, value=value, units=self.units))
+                name=name, value=prose_number(value), units=self.units))
         message = _("`{name}` is {how}.").format(
             name=name, how=_how_far(value, expected, scale, _(self.scale_name)))
         tolerance = self.mistake_rtol or self.rtol
@@ -313,7 +313,8 @@ def declare(declared):
     """
     def attach(check):
         if check.__name__ != declared.check:
-            raise RsgeoError(f"{check.__name__} is declared as {declared.check}")
+            raise RsgeoError(_("{kind} is declared as {declared_check}").format(
+                    kind=check.__name__, declared_check=declared.check))
         check.declaration = declared
         _DECLARATIONS[declared.check] = declared
         return check
@@ -361,8 +362,8 @@ def declaration(check):
     """
     name = getattr(check, "__name__", check)
     if name not in _DECLARATIONS:
-        raise RsgeoError(f"{check!r} is not a check of rsgeo.exercises; it needs one of "
-                         f"{', '.join(_DECLARATIONS)}")
+        raise RsgeoError(_("{check!r} is not a check of rsgeo.exercises; it needs one "
+                           "of {listed}").format(check=check, listed=', '.join(_DECLARATIONS)))
     return _DECLARATIONS[name]
 
 
@@ -487,7 +488,7 @@ def _integer(answer, name, what, many=""):
     value = _number(answer, name, many=many)
     if not value.is_integer():
         raise _WrongForm(_("`{name}` is {value:g}; {what} is a whole number.").format(
-            name=name, value=value, what=what))
+            name=name, value=prose_number(value), what=what))
     return int(value)
 
 
@@ -516,8 +517,10 @@ def _two_numbers(answer, name):
     except (TypeError, ValueError):
         raise _WrongForm(_("`{name}` is not two numbers (col, row).").format(name=name)) from None
     if array.size != 2:
-        raise _WrongForm(_("`{name}` holds {size} value(s); the check needs two, (col, row).")
-                         .format(name=name, size=array.size))
+        raise _WrongForm((_("`{name}` holds one value; the check needs two, (col, row).")
+                          if array.size == 1 else
+                          _("`{name}` holds {size} values; the check needs two, (col, row).")
+                          ).format(name=name, size=array.size))
     if not np.isfinite(array).all():
         raise _WrongForm(_("`{name}` holds NaN or infinite values.").format(name=name))
     return array
@@ -658,7 +661,8 @@ def _how_far(answer, expected, scale=None, scale_name=""):
     for low, high in ((1.5, 2), (2, 5), (5, 10), (10, 100)):
         if factor < high:
             return (_("between {low:g} and {high:g} times too large") if ratio > 1 else
-                    _("between {low:g} and {high:g} times too small")).format(low=low, high=high)
+                    _("between {low:g} and {high:g} times too small")).format(
+                        low=prose_number(low), high=prose_number(high))
     return _("more than 100 times too large") if ratio > 1 else _("more than 100 times too small")
 
 
@@ -671,8 +675,9 @@ def _off_by(off, units=_PIXELS):
         direction = _("(right, down)") if off[1] > 0 else _("(right, up)")
     else:
         direction = _("(left, down)") if off[1] > 0 else _("(left, up)")
-    return _("(col, row) is off by about {distance:.2g} {units} {direction}.").format(
-        distance=np.hypot(*off), units=_(units), direction=direction)
+    distance = float(f"{np.hypot(*off):.2g}")       # two significant digits, never 1.3e+02
+    return _("(col, row) is off by about {distance:g} {units} {direction}.").format(
+        distance=prose_number(distance), units=_(units), direction=direction)
 
 
 def _position_verdict(declared, value, task, atol, correct, units=_PIXELS):

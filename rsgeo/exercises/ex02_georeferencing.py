@@ -4,7 +4,7 @@ import numpy as np
 
 from .. import accuracy, transforms
 from .._checks import as_points
-from .._i18n import N_, _
+from .._i18n import N_, _, prose_number
 from .engine import (
     Declaration,
     Mistake,
@@ -44,8 +44,8 @@ DESIGN_MATRIX = Declaration(
             and np.allclose(answer, task.right[:, 1:])) or (
             answer.shape == task.right.shape
             and not np.isclose(answer[:, 0], task.right[:, 0]).all())),
-        Mistake(N_("x and y are swapped: x (easting, points[:, 0]) comes before y (northing, "
-                   "points[:, 1])."),
+        Mistake(N_("x and y are swapped: x (easting, `points[:, 0]`) comes before y (northing, "
+                   "`points[:, 1]`)."),
                 lambda task: transforms.design_matrix(task.points[:, ::-1], task.order)),
         Mistake(N_("These are not the centred coordinates of `points` (each column is off by a "
                    "constant): build the matrix from `points` itself."),
@@ -90,8 +90,10 @@ def check_design_matrix(matrix, points, order=1):
             raise _WrongForm(_("`matrix` is not a table of numbers (rows of different lengths, "
                                "or text?).")) from None
         if array.ndim != 2:
-            raise _WrongForm(_("`matrix` has {ndim} dimension(s), shape {shape}; it needs 2: one "
-                               "row per GCP, one column per term.").format(
+            raise _WrongForm((_("`matrix` has one dimension, shape {shape}; it needs 2: one row "
+                                "per GCP, one column per term.") if array.ndim == 1 else
+                              _("`matrix` has {ndim} dimensions, shape {shape}; it needs 2: one "
+                                "row per GCP, one column per term.")).format(
                                    ndim=array.ndim, shape=array.shape))
         if not np.isfinite(array).all():
             raise _WrongForm(_("`matrix` holds NaN or infinite values."))
@@ -120,8 +122,9 @@ def check_design_matrix(matrix, points, order=1):
     if not wrong.any():
         return Verdict(True, _("a {n} × {m} design matrix, columns {names}.").format(
             n=n, m=m, names=names))
-    message = _("the column(s) for {names} are not right.").format(
-        names=", ".join(task.names[i] for i in np.flatnonzero(wrong)))
+    columns = [task.names[i] for i in np.flatnonzero(wrong)]
+    message = (_("the column for {names} is not right.") if len(columns) == 1 else
+               _("the columns for {names} are not right.")).format(names=", ".join(columns))
     for mistake in (_SWAPPED, _NOT_CENTRED, _NO_ONES):
         if (mistake.recognise(array, task) if mistake.recognise is not None
                 else np.allclose(array, mistake.wrong(task))):
@@ -278,7 +281,8 @@ def check_blunder(gcp_id, gcps, order):
     hints = BLUNDER.hints(gcp_id, task, lambda answer, wrong: answer == wrong, order=order)
     return Verdict(False, _("GCP {id} is not the blunder: its residual, {residual:.2f} px, is "
                             "not the one that stands out.").format(
-                                id=gcp_id, residual=task.distance[ids.index(gcp_id)]),
+                                id=gcp_id,
+                                residual=prose_number(task.distance[ids.index(gcp_id)])),
                    _first_hint(hints, generic))
 
 
@@ -288,9 +292,9 @@ def _blunder_by_number(answer, ids, worst):
     generic = _(BLUNDER.general)
     if isinstance(answer, (list, tuple)) or np.ndim(answer) > 0:
         size = len(answer)
-        raise _WrongForm((_("`gcp_id` holds {size} value(s); the check needs ONE id, a string "
+        raise _WrongForm((_("`gcp_id` holds one value; the check needs ONE id, a string "
                             "such as {example!r}: take it out with `gcp_id[0]`.") if size == 1
-                          else _("`gcp_id` holds {size} value(s); the check needs ONE id, a "
+                          else _("`gcp_id` holds {size} values; the check needs ONE id, a "
                                  "string such as {example!r}.")).format(size=size,
                                                                        example=ids[0]))
     number = _integer(answer, "gcp_id", _("a position in the table"))
@@ -380,13 +384,14 @@ def check_degree_choice(order, gcps, is_check):
     errors, best = task.errors, task.right
     if order == best:
         return Verdict(True, _("degree {order}: check-point RMS {rms:.2f} px, the lowest.")
-                       .format(order=order, rms=errors[order]))
+                       .format(order=order, rms=prose_number(errors[order])))
     hints = DEGREE_CHOICE.hints(order, task, lambda answer, wrong: answer == wrong,
                                 exclude_right=False)
     message = (_("degree {order} has a check-point RMS of {rms:.2f} px; a lower degree does "
                  "better on the check points.") if best < order else
                _("degree {order} has a check-point RMS of {rms:.2f} px; a higher degree does "
-                 "better on the check points.")).format(order=order, rms=errors[order])
+                 "better on the check points.")).format(order=order,
+                                                       rms=prose_number(errors[order]))
     return Verdict(False, message, _first_hint(hints, DEGREE_CHOICE.general))
 
 
@@ -501,8 +506,8 @@ def check_pec_class(pec_class, check_errors, fit_residuals, scale):
     except _WrongForm as form:
         return form.verdict(generic)
     if not isinstance(pec_class, (str, np.str_)):
-        return Verdict(False, _("`pec_class` is a {kind}, not a class: the check needs one of "
-                                "{listed}, a string.").format(kind=type(pec_class).__name__,
+        return Verdict(False, _("`pec_class` is a `{kind}`, not a class: the check needs one "
+                                "of {listed}, a string.").format(kind=type(pec_class).__name__,
                                                               listed=listed), generic)
     pec_class = str(pec_class)
     if pec_class not in _PEC_ANSWERS:
@@ -516,7 +521,7 @@ def check_pec_class(pec_class, check_errors, fit_residuals, scale):
                                 "{listed}.").format(value=pec_class, listed=listed), generic)
     task = PEC_CLASS.task(check_errors=check_errors, fit_residuals=fit_residuals, scale=scale)
     result, right = task.result, task.right
-    where = _("1:{scale:,.0f}").format(scale=result.scale)
+    where = _("1:{scale:,.0f}").format(scale=prose_number(result.scale))
     if pec_class == right:
         if right == "none":
             return Verdict(True, _("no class at {where}: the check points fail class D's tests."
@@ -524,17 +529,21 @@ def check_pec_class(pec_class, check_errors, fit_residuals, scale):
         pec, ep = result.thresholds[right]
         return Verdict(True, _("class {name} at {where}: 90 % of the check points within "
                                "{p90:.1f} m (PEC {pec:.1f} m), RMS {rms:.1f} m (EP {ep:.1f} m)."
-                               ).format(name=right, where=where, p90=result.percentile_90,
-                                        pec=pec, rms=result.rms, ep=ep))
+                               ).format(name=right, where=where,
+                                        p90=prose_number(result.percentile_90),
+                                        pec=prose_number(pec), rms=prose_number(result.rms),
+                                        ep=prose_number(ep)))
     hints = PEC_CLASS.hints(pec_class, task, lambda answer, wrong: answer == wrong)
     if pec_class == "none":
         message = _("the check points meet a class at {where}: 'none' is too strict.").format(
             where=where)
     elif right == "none" or _PEC_ANSWERS.index(pec_class) < _PEC_ANSWERS.index(right):
-        failed = [_("90 % test") if not result.pec_test[pec_class] else "",
-                  _("standard-error test") if not result.ep_test[pec_class] else ""]
-        message = _("at {where} the check points fail class {name}'s {tests}.").format(
-            where=where, name=pec_class, tests=_(" and ").join(t for t in failed if t))
+        fails_pec, fails_ep = not result.pec_test[pec_class], not result.ep_test[pec_class]
+        message = (_("at {where} the check points fail class {name}'s 90 % test and "
+                     "standard-error test.") if fails_pec and fails_ep else
+                   _("at {where} the check points fail class {name}'s 90 % test.") if fails_pec
+                   else _("at {where} the check points fail class {name}'s standard-error "
+                          "test.")).format(where=where, name=pec_class)
     else:
         message = _("the check points meet class {name} at {where}, but also a stricter class."
                     ).format(name=pec_class, where=where)

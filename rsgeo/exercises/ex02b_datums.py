@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import georef
 from .._checks import as_points
-from .._i18n import N_
+from .._i18n import N_, _
 from ..errors import GridError
 from .engine import Declaration, Mistake, declare
 
@@ -15,7 +15,8 @@ __all__ = ["check_datum_shift_pixels", "check_grid_vs_parameters"]
 def _datum_derived(task):
     size = float(task.pixel_size)
     if not np.isfinite(size) or size <= 0:
-        raise GridError(f"pixel_size must be a positive number of metres, got {task.pixel_size!r}")
+        raise GridError(_("pixel_size must be a positive number of metres, got "
+                          "{task_pixel_size!r}").format(task_pixel_size=task.pixel_size))
     dx, dy, distance = georef.datum_shift(as_points(task.map_xy, "map_xy"), task.src_crs,
                                           task.dst_crs)
     return {"size": size, "dx": dx, "dy": dy, "distance": distance}
@@ -93,7 +94,8 @@ def check_datum_shift_pixels(shift_px, map_xy, src_crs, dst_crs, pixel_size, nam
 def _gap_derived(task):
     size = float(task.pixel_size)
     if not np.isfinite(size) or size <= 0:
-        raise GridError(f"pixel_size must be a positive number of metres, got {task.pixel_size!r}")
+        raise GridError(_("pixel_size must be a positive number of metres, got "
+                          "{task_pixel_size!r}").format(task_pixel_size=task.pixel_size))
     points = as_points(task.map_xy, "map_xy")
     grid = georef.datum_shift(points, task.src_crs, task.dst_crs, transformation=task.grid)
     three = georef.datum_shift(points, task.src_crs, task.dst_crs,

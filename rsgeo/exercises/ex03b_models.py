@@ -4,7 +4,7 @@ import numpy as np
 
 from .. import accuracy, transforms
 from .._checks import as_points
-from .._i18n import N_, _
+from .._i18n import N_, _, prose_number
 from .engine import Declaration, Mistake, Verdict, _how_far, _listed, _require, _WrongForm, declare
 
 __all__ = ["check_helmert", "check_projective_matrix", "check_model_choice"]
@@ -23,8 +23,10 @@ def _four_numbers(answer, name):
         raise _WrongForm(_("`{name}` is not four numbers (a, b, c, d).").format(
             name=name)) from None
     if array.size != 4:
-        raise _WrongForm(_("`{name}` holds {size} value(s); the Helmert model has four "
-                           "unknowns, (a, b, c, d).").format(name=name, size=array.size))
+        raise _WrongForm((_("`{name}` holds one value; the Helmert model has four unknowns, "
+                            "(a, b, c, d).") if array.size == 1 else
+                          _("`{name}` holds {size} values; the Helmert model has four "
+                            "unknowns, (a, b, c, d).")).format(name=name, size=array.size))
     if not np.isfinite(array).all():
         raise _WrongForm(_("`{name}` holds NaN or infinite values.").format(name=name))
     return array
@@ -184,7 +186,7 @@ def check_projective_matrix(matrix, src, dst):
     if _maps_exactly(array, task):
         return Verdict(True, _("the matrix maps the four points exactly."))
     message = _("the matrix misses the points by up to {error:.3g} (in dst units).").format(
-        error=_miss(array, task.src, task.dst))
+        error=prose_number(_miss(array, task.src, task.dst)))
     hints = PROJECTIVE_MATRIX.hints(array, task, None, first=True)
     if not hints:
         return Verdict(False, message, general)
@@ -257,8 +259,8 @@ def check_model_choice(model, src, dst, is_check, name="model"):
     try:
         model = _require(model, name)
         if not isinstance(model, str):
-            raise _WrongForm(_("`{name}` is {value!r}; the check needs the model's name as "
-                               "text, e.g. 'polynomial 1'.").format(name=name, value=model))
+            raise _WrongForm(_("`{name}` is `{value!r}`; the check needs the model's name "
+                               "as text, e.g. 'polynomial 1'.").format(name=name, value=model))
         if model not in labels:
             raise _WrongForm(_("`{name}` is {value!r}: the model is one of {listed}.").format(
                 name=name, value=model, listed=_listed(labels, repr)))
@@ -268,10 +270,11 @@ def check_model_choice(model, src, dst, is_check, name="model"):
     check = task.table["check RMS (px)"]
     if model == task.right:
         return Verdict(True, _("`{name}` is {value!r}: check-point RMS {rms:.2f} px, the "
-                               "lowest.").format(name=name, value=model, rms=check[model]))
+                               "lowest.").format(name=name, value=model,
+                                                 rms=prose_number(check[model])))
     hints = MODEL_CHOICE.hints(model, task, lambda answer, wrong: answer == wrong,
                                exclude_right=False, first=True)
     return Verdict(False, _("`{name}` is {value!r}, whose check-point RMS is {rms:.2f} px; "
                             "another model does better on the check points.").format(
-                                name=name, value=model, rms=check[model]),
+                                name=name, value=model, rms=prose_number(check[model])),
                    hints[0] if hints else _(MODEL_CHOICE.general))

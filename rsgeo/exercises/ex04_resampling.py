@@ -5,7 +5,7 @@ import numpy as np
 
 from .. import resample
 from .._checks import as_resolution, as_shape
-from .._i18n import N_, _
+from .._i18n import N_, _, prose_number
 from .engine import Declaration, Mistake, Verdict, _require, _WrongForm, declare
 
 __all__ = ["check_bilinear", "check_method_for_classes", "check_overshoot",
@@ -125,7 +125,7 @@ def check_method_for_classes(method):
     except _WrongForm as form:
         return form.verdict(generic)
     if not isinstance(method, str):
-        return Verdict(False, _("`method` is not a string ({kind}); the check needs a name from "
+        return Verdict(False, _("`method` is not a string (`{kind}`); the check needs a name from "
                                 "resample.METHODS, a string: {listed}.").format(
                                     kind=type(method).__name__, listed=listed), generic)
     task = METHOD_FOR_CLASSES.task()
@@ -412,7 +412,10 @@ def check_grid_extent(extent, src_shape, transform, resolution):
     """
     task = GRID_EXTENT.task(src_shape=src_shape, transform=transform, resolution=resolution)
     west_, north_, rows, cols = task.right
-    answer = _require(extent, "extent")
+    try:
+        answer = _require(extent, "extent")
+    except _WrongForm as wrong:                 # None: the message about a missing return
+        return wrong.verdict(_(GRID_EXTENT.general))
     form = _("`extent` must be four numbers, (west, north, rows, cols): the grid's left edge "
              "and top edge in metres, then its size in pixels.")
     try:
@@ -424,8 +427,9 @@ def check_grid_extent(extent, src_shape, transform, resolution):
     west, north, n_r, n_c = values
     if [west, north, n_r, n_c] == [west_, north_, rows, cols]:
         return Verdict(True, _("`extent` = (west {west:.10g}, north {north:.10g}, {rows} rows, "
-                               "{cols} cols).").format(west=west, north=north, rows=int(n_r),
-                                                       cols=int(n_c)))
+                               "{cols} cols).").format(west=prose_number(west),
+                                                       north=prose_number(north),
+                                                       rows=int(n_r), cols=int(n_c)))
     # which parts are off and which way, never by how much (that would give the answer away)
     problems = []
     if west != west_:

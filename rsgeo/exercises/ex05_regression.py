@@ -9,7 +9,7 @@ photographs* (seed document 000 of this course).
 import numpy as np
 
 from .. import radiometry
-from .._i18n import N_, _
+from .._i18n import N_, _, prose_number
 from .engine import (
     Declaration,
     Mistake,
@@ -130,8 +130,8 @@ def check_gain_offset(gain, offset, x, y):
                                   wrong[1] is not None and _near(wrong[1], right[1], 1e-6))
         return Verdict(False, _("`gain` is right; `offset` is {how}.").format(
             how=_how_far(offset_value, fit.offset)), " ".join(hints) or _ANY_OFFSET.text())
-    return Verdict(True, _("gain {gain:.4f}, offset {offset:.3f}.").format(gain=fit.gain,
-                                                                          offset=fit.offset))
+    return Verdict(True, _("gain {gain:.4f}, offset {offset:.3f}.").format(
+        gain=prose_number(fit.gain), offset=prose_number(fit.offset)))
 
 
 def _truncation_derived(task):
@@ -287,7 +287,8 @@ def check_filter_size(size, x_image, y_image, target_r=0.8, sizes=(1, 3, 5, 7, 9
         return Verdict(False, _("no filter size in the list reaches the target here."))
     if size == best:
         return Verdict(True, _("{size} × {size}: r = {r:.3f}, the first to reach {target}.")
-                       .format(size=size, r=r[size], target=target_r))
+                       .format(size=size, r=prose_number(r[size]),
+                               target=prose_number(target_r)))
     hints = FILTER_SIZE.hints(size, task, lambda answer, wrong: answer == wrong)
     if r[size] < target_r:
         message = _("{size} × {size} gives r = {r:.3f}, below the target {target}: too small a "
@@ -295,5 +296,6 @@ def check_filter_size(size, x_image, y_image, target_r=0.8, sizes=(1, 3, 5, 7, 9
     else:
         message = _("{size} × {size} reaches r = {r:.3f}, but a smaller window reaches {target} "
                     "too.")
-    return Verdict(False, message.format(size=size, r=r[size], target=target_r),
+    return Verdict(False, message.format(size=size, r=prose_number(r[size]),
+                                         target=prose_number(target_r)),
                    _first_hint(hints, generic))

@@ -170,7 +170,7 @@ def _decoded_form(answer, bits, genes, expected):
     except (TypeError, ValueError):
         raise _WrongForm(_("`decoded` is not an array of numbers.")) from None
     if array.ndim == 0:
-        if int(array) == int(bits @ 2 ** np.arange(bits.size - 1, -1, -1)):
+        if np.isfinite(array) and int(array) == int(bits @ 2 ** np.arange(bits.size - 1, -1, -1)):
             raise _WrongForm(_("`decoded` is one integer: you read the whole chromosome as one "
                                "number. Each gene of 8 bits is one label."))
         raise _WrongForm(_("`decoded` is one number; the check needs one label per gene, "
@@ -241,8 +241,11 @@ def check_decode(solution, chromosome):
         return Verdict(True, _("decoded {labels}.").format(labels=expected.tolist()))
     hints = DECODE.hints(array, task, np.array_equal)
     wrong = np.flatnonzero(array != expected) + 1
-    return Verdict(False, _("`decoded` is not what these bits encode: gene(s) {genes} differ.")
-                   .format(genes=", ".join(map(str, wrong))), _first_hint(hints, DECODE.general))
+    return Verdict(False, (_("`decoded` is not what these bits encode: gene {genes} differs.")
+                           if len(wrong) == 1 else
+                           _("`decoded` is not what these bits encode: genes {genes} differ.")
+                           ).format(genes=", ".join(map(str, wrong))),
+                   _first_hint(hints, DECODE.general))
 
 
 SUBOPTIMAL_SEGMENT = Declaration(
