@@ -101,7 +101,8 @@ def time_widget(build, repeat=2):
                 control.value = value
                 seconds.append(time.perf_counter() - start)
                 cpu.append(time.process_time() - start_cpu)
-                if output.outputs is before or "<img " not in output.outputs[0]["data"]["text/html"]:
+                shown = output.outputs[0]["data"].get("text/html", "")
+                if output.outputs is before or "<img " not in shown:
                     raise RuntimeError(f"{control.description}: no new PNG frame "
                                        f"after value {value!r}")
         control.value = default

@@ -508,8 +508,8 @@ def portuguese_config(english):
             skipping = True
             continue
         if line.strip() == "bibtex_reference_style: author_year":
-            out.append('    bibtex_reference_style: author_year_pt    # pt_BR: "Meneses e Almeida, '
-                       '2012", "s.d." (book/_ext/bibliography_pt.py)\n')
+            out.append('    bibtex_reference_style: author_year_pt    # pt_BR: "Meneses e '
+                       'Almeida, 2012", "s.d." (book/_ext/bibliography_pt.py)\n')
             continue
         if line.strip() == "bibtex_default_style: plain":
             out.append("    bibtex_default_style: plain_pt    # pt_BR: the bibliography in "

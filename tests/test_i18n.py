@@ -196,6 +196,9 @@ def test_catalogues_match_the_current_english_text(templates):
         po = CATALOGUES / name
         wanted = {message.id for message in entries(pot)}
         held = {message.id for message in entries(po)} if po.exists() else set()
+        if po == THEME_PO:
+            # kept by hand: the themes' labels besides the book's own templates' (the template)
+            wanted |= held
         if wanted != held:
             stale[str(name)] = {
                 "new English text": [text[:70] for text in sorted(wanted - held)][:3],

@@ -57,6 +57,14 @@ def _from_docstring(node):
     return ":docstring of " in (node.source or "")
 
 
+def _in_signature(node):
+    while node is not None:
+        if isinstance(node, addnodes.desc_signature):
+            return True
+        node = node.parent
+    return False
+
+
 class KeepDocstringsEnglish(SphinxTransform):
     """Mark autodoc's and autosummary's text untranslatable (Sphinx's ``is_translatable`` skips a
     TextElement whose ``translatable`` is False); runs before ``Locale`` (priority 20)."""
@@ -77,9 +85,10 @@ class KeepDocstringsEnglish(SphinxTransform):
                       if _from_docstring(node)]
         generated.update(docstrings)
         for node in generated:
-            # an inline node is never translated without the attribute, and Sphinx's
-            # RemoveTranslatableInline would move it to the end of its parent if it had one
-            if not isinstance(node, nodes.Inline):
+            # a signature's nodes are never translated, and Sphinx's RemoveTranslatableInline
+            # moves an inline node that has the attribute to the end of its parent: marked, a
+            # signature read "Raster(:ndarrayarray, ...)"
+            if not _in_signature(node):
                 node["translatable"] = False
         # a module's docstring (its paragraphs, its own sections) sits outside any desc node:
         # the class says "English on purpose" to the reader's stylesheet and to the tests
