@@ -45,6 +45,8 @@ from sphinx import addnodes
 from sphinx.transforms import SphinxTransform
 
 ENGLISH = "en"
+#: The name of the language switch's landmark, in the book's language.
+SWITCH_NAMES = {"en": "Other language", "pt_BR": "Outra língua"}
 ENGLISH_CLASS = "language-" + ENGLISH
 # the theme options that are texts the reader sees (see translate_theme_texts)
 THEME_TEXTS = ("theme_search_bar_text",)
@@ -246,9 +248,11 @@ def add_language_switch(app, pagename, templatename, context, doctree):
     url = other_page_url(pagename, other_book)
     language, label = app.config.i18n_other_language, app.config.i18n_other_label
     hreflang = language.replace("_", "-")
+    # a landmark of its own, named in this book's language (axe "region": all content in one)
+    name = SWITCH_NAMES.get(app.config.language or ENGLISH, SWITCH_NAMES[ENGLISH])
     context["rsgeo_language_switch"] = (
-        f'<p class="rsgeo-language-switch d-print-none">'
-        f'<a href="{url}" hreflang="{hreflang}" lang="{hreflang}">{label}</a></p>')
+        f'<nav class="rsgeo-language-switch d-print-none" aria-label="{name}">'
+        f'<a href="{url}" hreflang="{hreflang}" lang="{hreflang}">{label}</a></nav>')
     context["metatags"] = (context.get("metatags", "")
                            + f'\n<link rel="alternate" hreflang="{hreflang}" href="{url}" />')
 
