@@ -186,6 +186,8 @@ class _Number:
         return repr(self.value)
 
 
+#: Python's separators swapped for Brazilian ones: "1,234.5" -> "1.234,5" (rsgeo's messages,
+#: figure descriptions and figure texts all write numbers through this one table).
 _PORTUGUESE_SEPARATORS = str.maketrans({".": ",", ",": "."})
 
 

@@ -23,7 +23,7 @@ import re
 
 import numpy as np
 
-from ._i18n import _, get_language
+from ._i18n import _PORTUGUESE_SEPARATORS, _, get_language
 
 __all__ = ["MAX_LENGTH", "describe_figure"]
 
@@ -36,7 +36,6 @@ MAX_ENTRIES = 8
 MAX_QUOTED_TEXTS = 3
 
 _SUPERSCRIPT = str.maketrans("-+0123456789", "⁻⁺⁰¹²³⁴⁵⁶⁷⁸⁹")
-_DECIMAL_COMMA = str.maketrans(",.", ".,")
 _GREEK = {name: chr(code) for name, code in (
     ("alpha", 945), ("beta", 946), ("gamma", 947), ("delta", 948), ("epsilon", 949),
     ("theta", 952), ("lambda", 955), ("mu", 956), ("pi", 960), ("rho", 961), ("sigma", 963),
@@ -91,7 +90,7 @@ def _format_number(value, span=None):
         else:
             text = f"{mantissa} × 10{power}"
     if get_language() == "pt_BR":
-        text = text.translate(_DECIMAL_COMMA)
+        text = text.translate(_PORTUGUESE_SEPARATORS)
     return text.replace("-", "−")
 
 

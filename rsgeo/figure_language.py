@@ -31,7 +31,7 @@ import gettext as _gettext
 import re
 import string
 
-from ._i18n import LOCALE_DIR, _normalise, get_language, translate
+from ._i18n import _PORTUGUESE_SEPARATORS, LOCALE_DIR, _normalise, get_language, translate
 
 __all__ = ["DOMAIN", "translate_text", "translate_figure", "translate_table",
            "translate_rendered_figures"]
@@ -46,7 +46,6 @@ _NUMBER = re.compile(r"(?<![\w.,])(?:\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.\d+)(?:[e
 # a number with a decimal point only: in a whole text, where "0,384" may already be Portuguese
 # (rsgeo's own figures write their numbers the language's way), a comma is left alone
 _DECIMAL = re.compile(r"(?<![\w.,])\d+\.\d+(?:[eE][-+−]?\d+)?(?![\w]|[.,]\d)")
-_SEPARATORS = str.maketrans({".": ",", ",": "."})
 
 
 def _language(language):
@@ -96,8 +95,8 @@ def _numbers(text, language, thousands=False):
             pieces[index] = number.sub(
                 lambda match: match.group().replace(",", "").replace(".", "{,}"), piece)
         else:
-            pieces[index] = number.sub(lambda match: match.group().translate(_SEPARATORS),
-                                       piece)
+            pieces[index] = number.sub(
+                lambda match: match.group().translate(_PORTUGUESE_SEPARATORS), piece)
     return "$".join(pieces)
 
 
