@@ -217,7 +217,8 @@ def check_page(browser, base, path, screenshot=None, lang=None, root=None, findi
         page.screenshot(path=str(screenshot), full_page=height <= 16384)
 
     page.set_viewport_size(PHONE)
-    page.wait_for_timeout(300)
+    # the theme makes a block that now scrolls sideways focusable 300 ms after a resize
+    page.wait_for_timeout(1000)
     problems += phone_layout_problems(page)
     phone_violations = axe_violations(page)
     problems += _blocking(phone_violations, PHONE["width"])

@@ -73,8 +73,6 @@ CITATION_ENTRY = 'role="doc-biblioentry"'
 HIDDEN_CELL_LABEL = ' aria-label="Toggle hidden content"'
 # pandas' empty top-left header cell (axe empty-table-header): an empty data cell instead
 EMPTY_HEADER = re.compile(r"<th(\s[^>]*)?>(\s|&nbsp;)*</th>")
-# a <pre> (code or output) without a tabindex: focusable, so that a keyboard can scroll it
-PREFORMATTED = re.compile(r"<pre(?=[\s>])(?![^>]*\btabindex=)")
 
 
 def add_book_files(app, config):
@@ -128,10 +126,10 @@ def accessible_body(app, pagename, templatename, context, doctree):
     - the toggle of a hidden cell is named by its visible text ("Show code cell source"), not
       by an English aria-label that said something else (axe label-content-name-mismatch);
     - the bibliography's entries are the items of its list (role="listitem");
-    - an empty table header cell (pandas' top-left corner) is an empty data cell;
-    - a block of code or output, which scrolls sideways in its own box when it is wider than a
-      phone, can be reached with the Tab key and scrolled with the arrows (axe
-      scrollable-region-focusable).
+    - an empty table header cell (pandas' top-left corner) is an empty data cell.
+
+    (A block of code or output that scrolls sideways in its own box on a phone is made
+    reachable by the Tab key by pydata-sphinx-theme's own script, 300 ms after each resize.)
     """
     body = context.get("body")
     if not body:
@@ -139,7 +137,6 @@ def accessible_body(app, pagename, templatename, context, doctree):
     body = body.replace(HIDDEN_CELL_LABEL, "")
     body = body.replace(CITATION_ENTRY, 'role="listitem"')
     body = EMPTY_HEADER.sub("<td></td>", body)
-    body = PREFORMATTED.sub('<pre tabindex="0"', body)
     context["body"] = body
 
 
