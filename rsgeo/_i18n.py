@@ -118,12 +118,19 @@ def get_language():
     return _normalise(os.environ.get(ENVIRONMENT_VARIABLE, "en"), ENVIRONMENT_VARIABLE)
 
 
+def _language(language):
+    """``language`` normalised, or the current language when it is None."""
+    return get_language() if language is None else _normalise(language, "language")
+
+
 @functools.cache
-def _catalogue(language):
+def _catalogue(language, domain=DOMAIN):
+    """The compiled catalogue of ``domain`` (rsgeo's messages, or the figures' texts) in
+    ``language``."""
     if language == "en":
         return _gettext.NullTranslations()
     # an install without the compiled catalogue (see pyproject's package data) speaks English
-    return _gettext.translation(DOMAIN, LOCALE_DIR, languages=[language], fallback=True)
+    return _gettext.translation(domain, LOCALE_DIR, languages=[language], fallback=True)
 
 
 def translate(message, language=None):
@@ -156,7 +163,7 @@ def translate(message, language=None):
     >>> translate("", "pt_BR")
     ''
     """
-    language = get_language() if language is None else _normalise(language, "language")
+    language = _language(language)
     if not message:                     # gettext("") is the catalogue's header, not a message
         return message
     return _catalogue(language).gettext(message)

@@ -27,11 +27,11 @@ Examples
 """
 
 import functools
-import gettext as _gettext
 import re
 import string
 
-from ._i18n import _PORTUGUESE_SEPARATORS, LOCALE_DIR, _normalise, get_language, translate
+from ._i18n import _PORTUGUESE_SEPARATORS, _language, get_language, translate
+from ._i18n import _catalogue as _gettext_catalogue
 
 __all__ = ["DOMAIN", "translate_text", "translate_figure", "translate_table",
            "translate_rendered_figures"]
@@ -48,10 +48,6 @@ _NUMBER = re.compile(r"(?<![\w.,])(?:\d{1,3}(?:,\d{3})+(?:\.\d+)?|\d+\.\d+)(?:[e
 _DECIMAL = re.compile(r"(?<![\w.,])\d+\.\d+(?:[eE][-+−]?\d+)?(?![\w]|[.,]\d)")
 
 
-def _language(language):
-    return get_language() if language is None else _normalise(language, "language")
-
-
 @functools.cache
 def _catalogue(language):
     """``(exact, templates)`` of the figures' catalogue: ``{text: translation}`` and
@@ -59,7 +55,7 @@ def _catalogue(language):
     if language == "en":
         return {}, []
     # an install without the compiled catalogue speaks English (and rsgeo's own catalogue)
-    catalogue = _gettext.translation(DOMAIN, LOCALE_DIR, languages=[language], fallback=True)
+    catalogue = _gettext_catalogue(language, DOMAIN)
     exact, templates = {}, []
     for message, translation in getattr(catalogue, "_catalog", {}).items():
         if not isinstance(message, str) or not message or not translation:
