@@ -41,7 +41,8 @@ ALL_PO = [*BOOK_PO, THEME_PO, RSGEO_PO]
 ENGLISH_WORDS = frozenset(
     "the of and is are was were be been with which that this these those to for from by on it "
     "its an at into than then when where what how why we you your our each every has have not "
-    "there their they can will would should must may".split())
+    "there their they can will would should must may after before between without only also "
+    "does".split())
 
 
 def _spec(path, name):

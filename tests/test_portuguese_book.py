@@ -19,7 +19,7 @@ import re
 
 import pytest
 from glue_numbers import brazilian_number
-from test_i18n import glossary_english_terms  # the glossary's English column
+from test_i18n import ENGLISH_WORDS, glossary_english_terms
 
 from notebook_runner import ROOT
 
@@ -28,14 +28,6 @@ PORTUGUESE_BUILD = ROOT / "_build" / "pt_BR" / "_build" / "html"
 PAGES = sorted(str(path.relative_to(ENGLISH_BUILD)) for folder in ("book", "exercises")
                for path in (ENGLISH_BUILD / folder).glob("*.html"))
 
-# English function words that are no Portuguese words (whole words, any accent kept in the
-# word): two different ones in a text make it an English sentence or phrase ("FA of the truth",
-# "compared with the grid"); one alone may be a name or a quoted term.
-ENGLISH_WORDS = frozenset(
-    "the of and is are was were been with which that this these those to for from by on it its "
-    "an at into than then when where what how why we you your our each every has have not there "
-    "their they can will would should must may after before between without only also does"
-    .split())
 # What a reader does not read as the page's language: code, maths, printed output, docstrings,
 # and titles of works published in English (in italics, as a title is written, or as the text of
 # a link to the work)
@@ -68,8 +60,10 @@ built = pytest.mark.skipif(_missing() is not None
 
 
 def english_words(text):
-    """The English function words in ``text`` (a set; two or more: English is left), outside
-    quoted titles and English names."""
+    """The English function words (test_i18n's ENGLISH_WORDS, whole words, any accent kept in
+    the word) in ``text``: two different ones make it an English sentence or phrase ("FA of the
+    truth", "compared with the grid"); one alone may be a name or a quoted term. Quoted titles
+    and English names are left out."""
     for name in ENGLISH_NAMES:
         text = text.replace(name, " ")
     text = QUOTED.sub(" ", text)
