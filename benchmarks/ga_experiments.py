@@ -1,10 +1,10 @@
-"""Experiments on the matchers of :mod:`rsgeo.matching` (chapter 6's tables; beyond the paper).
+"""Experiments on the matchers of :mod:`rsgeo.registration` (chapter 6's tables; beyond the paper).
 
 The harness behind ``python benchmarks/matching.py`` and chapter 6's live run (course tooling,
 not part of rsgeo; the chapter imports it from this folder): seeded synthetic meshes
 (:func:`rsgeo.synthetic.synthetic_meshes`) and the real CBERS scene, each searched by the
 paper's GA and its peers, each answer compared with the true matching and with the certified
-optimum of the fitness (:func:`rsgeo.matching.optimum_match`).
+optimum of the fitness (:func:`rsgeo.registration.optimum_match`).
 """
 
 import time
@@ -13,8 +13,8 @@ import affine
 import numpy as np
 import pandas as pd
 
-from rsgeo import data, regions, resample
-from rsgeo.matching import (
+from rsgeo import data, registration, resample
+from rsgeo.registration import (
     VARIANTS,
     Mesh,
     exhaustive_match,
@@ -46,7 +46,7 @@ def success_table(sizes=(5, 8), seeds=range(30), alpha=0.5, shrink=None, matcher
     For every size n and seed, :func:`rsgeo.synthetic.synthetic_meshes` makes
     a reference mesh and a noisy, shuffled copy with a known true matching.
     The optimum of the paper's fitness over all (n + 1)^n solutions (0 and
-    many-to-one included) is found by :func:`rsgeo.matching.optimum_match`
+    many-to-one included) is found by :func:`rsgeo.registration.optimum_match`
     (branch and bound, certified); each matcher then searches the same
     meshes with the same seed. A run reaches the optimum when its FA is the
     optimum's (within 1e-9), and finds the truth when it returns the true
@@ -64,7 +64,7 @@ def success_table(sizes=(5, 8), seeds=range(30), alpha=0.5, shrink=None, matcher
         Passed to ``synthetic_meshes``: one segment keeps only this share of its area.
     matchers : dict, optional
         name -> matcher(reference, adjustment, alpha, seed) returning a
-        :class:`rsgeo.matching.MatchResult`; default :data:`MATCHERS`.
+        :class:`rsgeo.registration.MatchResult`; default :data:`MATCHERS`.
 
     Returns
     -------
@@ -139,7 +139,7 @@ def fitness_comparison(sizes=(5, 6), seeds=range(30), alphas=(0.5, 0.7), shrink_
     makes a reference mesh and a noisy, shuffled copy with a known true
     matching, once as it is ("one-to-one") and once with reference segment 3
     keeping only ``shrink_share`` of its area (the paper's Landsat 2002 case).
-    Each variant of :func:`rsgeo.matching.fitness` is maximised by exhaustive
+    Each variant of :func:`rsgeo.registration.fitness` is maximised by exhaustive
     search over all (n + 1)^n solutions (0 and many-to-one included) and by
     the paper's GA (same seed).
 
@@ -212,18 +212,18 @@ def real_scene():
     The reference keeps the 8 largest forest segments (NDVI above 0.55) of the
     scene; the adjustment, the same ground resampled to 30 m pixels, rotated
     by 5° and shifted by (150, −90) m, its own 8 largest. The true matching
-    comes from the known transform (:func:`rsgeo.matching.true_matching`, 10
+    comes from the known transform (:func:`rsgeo.registration.true_matching`, 10
     reference pixels).
 
     Returns
     -------
-    reference, adjustment : rsgeo.matching.Mesh
+    reference, adjustment : rsgeo.registration.Mesh
         In metres.
     truth : ndarray of int
         True reference label of each adjustment segment, 0 = none.
     """
     ccd = data.load("cbers2b_rgb342")
-    vegetation = regions.ndvi(ccd.array[0], ccd.array[1])
+    vegetation = registration.ndvi(ccd.array[0], ccd.array[1])
     centre = ccd.transform @ (ccd.shape[1] / 2, ccd.shape[0] / 2)
     adjustment_transform = (affine.Affine.translation(centre[0] + 150, centre[1] - 90)
                             @ affine.Affine.rotation(5)
@@ -232,10 +232,10 @@ def real_scene():
     # (gdalwarp would widen the kernel for this downsampling; chapter 4 shows the difference)
     adjustment = resample.warp(vegetation, ~ccd.transform, (212, 212), adjustment_transform,
                                method="bilinear", nodata=-1.0, scale=1.0)
-    reference = regions.keep_largest(
-        regions.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
-    moved = regions.keep_largest(
-        regions.forest_segments(adjustment, threshold=0.55, min_area=11), 8)
+    reference = registration.keep_largest(
+        registration.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
+    moved = registration.keep_largest(
+        registration.forest_segments(adjustment, threshold=0.55, min_area=11), 8)
     to_reference = ~ccd.transform @ adjustment_transform
     mapped = np.column_stack(to_reference @ (moved.centroids[:, 0], moved.centroids[:, 1]))
     truth, _ = true_matching(reference.centroids, mapped, tolerance=10)
@@ -265,7 +265,7 @@ def real_table(seeds=range(30), alpha=0.5):
     Raises
     ------
     ValueError
-        For alpha outside [0, 1] (from :func:`rsgeo.matching.fitness`). No
+        For alpha outside [0, 1] (from :func:`rsgeo.registration.fitness`). No
         seeds give NaN percentages, not an error.
 
     References

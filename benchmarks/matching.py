@@ -10,7 +10,8 @@ the same code):
 - matching_solvers.csv: ga_experiments.success_table: the paper's binary GA, an integer-coded
   GA and SciPy's quadratic assignment (FAQ, 20 restarts) on synthetic meshes of each size (100
   seeds): how often each reaches the optimum of the paper's fitness over all (n + 1)^n solutions
-  (certified by branch and bound, rsgeo.matching.optimum_match; the "optimum" column says in how
+  (certified by branch and bound,
+   rsgeo.registration.optimum_match; the "optimum" column says in how
   many seeds) and the true matching, with mean and worst seconds per run.
 - matching_fitness.csv: ga_experiments.fitness_comparison: how often the exhaustive optimum
   of the paper's fitness and of the "compact" variant is the true matching, and how often the

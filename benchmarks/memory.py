@@ -1,5 +1,5 @@
-"""Peak memory of the big verbs: rsgeo.resample.warp, rsgeo.terrain.orthorectify and
-rsgeo.georef.georeference on uint8 scenes of 2048², 8192² and 16384² pixels.
+"""Peak memory of the big verbs: rsgeo.resample.warp, rsgeo.ortho.orthorectify and
+rsgeo.resample.georeference on uint8 scenes of 2048², 8192² and 16384² pixels.
 
 Each case runs in a fresh Python process (``python benchmarks/memory.py --case VERB SIZE``),
 which builds its input, calls the verb once and exits; the parent reads that child's peak
@@ -67,7 +67,8 @@ class _AffineModel:
 def _orthorectify(n):
     import affine
 
-    from rsgeo.terrain import orthorectify, simple_rpc_dict
+    from rsgeo.ortho import orthorectify
+    from rsgeo.sensors import simple_rpc_dict
 
     # simple_rpc_dict's nadir view, stretched to an n x n image of 10 m pixels
     rpc = simple_rpc_dict()
@@ -93,7 +94,7 @@ def _georeference(n):
 
     from rsgeo.data import Raster
     from rsgeo.gcp import GCPSet
-    from rsgeo.georef import georeference
+    from rsgeo.resample import georeference
 
     image = np.random.default_rng(0).integers(0, 256, (n, n), dtype=np.uint8)
     # 9 GCPs of a 20 m image rotated by 3° (UTM zone 23S), fitted by a first-order polynomial

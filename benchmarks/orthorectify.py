@@ -81,8 +81,9 @@ from pathlib import Path
 import affine
 import numpy as np
 
+from rsgeo.ortho import orthorectify
 from rsgeo.resample import METHODS
-from rsgeo.terrain import PushbroomSensor, fit_rpc, orthorectify
+from rsgeo.sensors import PushbroomSensor, fit_rpc
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "benchmarks"))

@@ -4,7 +4,7 @@
 
 Writes benchmarks/results/registration.csv (chapter 6c of the book loads and shows it), opening
 with '# key: value' lines that give the command, the seeds and the machine. Every number comes
-from this one run. Each method runs the shared pipeline of rsgeo.tiepoints: tie points ->
+from this one run. Each method runs the shared pipeline of rsgeo.registration: tie points ->
 GCPSet -> affine model -> refinement (tolerance 1 px) -> check points.
 
 Cases (the moving image gets seeded Gaussian noise, 2 DN, in every run):
@@ -18,11 +18,12 @@ Cases (the moving image gets seeded Gaussian noise, 2 DN, in every run):
 - "CCD near-infrared vs HRC": the same with the CCD's band 4: a radiometric change (vegetation
   bright in the near infrared, dark in the HRC's visible band).
 
-Methods: the GA paper's region matching (rsgeo.matching.register_by_regions; synthetic case
+Methods: the GA paper's region matching (rsgeo.registration.register_by_regions; synthetic case
 only: the HRC has no near-infrared band for the paper's forest classification), correlation tie
-points (rsgeo.tiepoints.correlation_tiepoints, from a seeded approximate georeferencing: the true
+points (rsgeo.registration.correlation_tiepoints,
+        from a seeded approximate georeferencing: the true
 or the file's geotransform moved by N(0, 60 m) per axis and turned by N(0, 1°); 4 passes, and 1
-pass), SIFT and ORB feature tie points (rsgeo.tiepoints.feature_tiepoints). A run that raises
+pass), SIFT and ORB feature tie points (rsgeo.registration.feature_tiepoints). A run that raises
 ValueError (too few tie points) is a failure with an infinite error.
 """
 
@@ -40,7 +41,7 @@ import pandas as pd  # noqa: E402
 import scipy  # noqa: E402
 import skimage  # noqa: E402
 
-from rsgeo import accuracy, data, matching, regions, synthetic, tiepoints  # noqa: E402
+from rsgeo import accuracy, data, registration, synthetic  # noqa: E402
 
 from machine import describe, header_lines  # noqa: E402  (benchmarks/machine.py)
 
@@ -51,7 +52,7 @@ SHIFT_M, ROTATION_DEG = 60.0, 1.0
 
 def synthetic_case():
     land = synthetic.two_date_landscape()
-    reference_segments = regions.forest_segments(land.reference, threshold=185)
+    reference_segments = registration.forest_segments(land.reference, threshold=185)
     return {"case": "synthetic, two dates", "reference": land.reference.astype(float),
             "reference_transform": land.reference_transform,
             "moving": land.adjustment.astype(float),
@@ -64,7 +65,7 @@ def synthetic_case():
 
 def real_cases():
     ccd, hrc = data.load("cbers2b_rgb342"), data.load("cbers2b_hrc")
-    blocks, block_transform = tiepoints.coarsen(hrc.array, hrc.transform, 8)
+    blocks, block_transform = registration.coarsen(hrc.array, hrc.transform, 8)
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     hand, kept = accuracy.refine_gcps(gcps.map_xy, gcps.image_xy, 1, 2.5)
     loo = accuracy.leave_one_out_errors(gcps.map_xy[kept], gcps.image_xy[kept], 1)
@@ -84,18 +85,19 @@ def tie_points(case, method, moving, seed):
     if method.startswith("correlation"):
         rows, cols = moving.shape
         centre = case["approximate"] @ (cols / 2, rows / 2)
-        approximate = tiepoints.perturb_transform(case["approximate"],
+        approximate = registration.perturb_transform(case["approximate"],
                                                   rng.normal(0, SHIFT_M, 2),
                                                   rng.normal(0, ROTATION_DEG), centre)
-        return tiepoints.correlation_tiepoints(
+        return registration.correlation_tiepoints(
             case["reference"], moving, 32, 64, case["reference_transform"],
             initial=~approximate, iterations=1 if "1 pass" in method else 4,
             valid=case["valid"], seed=seed)
     if method in ("SIFT", "ORB"):
-        return tiepoints.feature_tiepoints(case["reference"], moving, method.lower(),
+        return registration.feature_tiepoints(case["reference"], moving, method.lower(),
                                            case["reference_transform"], seed=seed)
-    adjustment = regions.forest_segments(moving, threshold=185)
-    return matching.register_by_regions(case["regions"], adjustment, case["reference_transform"],
+    adjustment = registration.forest_segments(moving, threshold=185)
+    return registration.register_by_regions(case["regions"], adjustment,
+                                            case["reference_transform"],
                                         20, case["pixel_m"], seed=seed)
 
 
@@ -106,15 +108,15 @@ def run(case, method, seed):
     start = time.perf_counter()
     try:
         found = tie_points(case, method, moving, seed)
-        if isinstance(found, tiepoints.Registration):
+        if isinstance(found, registration.Registration):
             model, used = found.model, int(found.kept.sum())
         else:
-            result = tiepoints.register(found, tolerance=1.0)
+            result = registration.register(found, tolerance=1.0)
             model, used = result.model, int(result.kept.sum())
     except ValueError:
         return np.inf, 0, time.perf_counter() - start
     seconds = time.perf_counter() - start
-    error = tiepoints.grid_error(model, case["truth"], case["check_transform"],
+    error = registration.grid_error(model, case["truth"], case["check_transform"],
                                  case["check_shape"])
     return error, used, seconds
 

@@ -8,12 +8,12 @@ temporary folder), warped onto a grid of the same size through a polynomial of o
 to 25 GCPs of a mildly curved mapping (the course's GCP case; compiled in rsgeo's kernels), by:
 
 * ``warp``: the whole source read into memory, one :func:`rsgeo.resample.warp` call;
-* ``warp_tiled -> array``: :func:`rsgeo.tiling.warp_tiled` from the file, each tile reading
+* ``warp_tiled -> array``: :func:`rsgeo.resample.warp_tiled` from the file, each tile reading
   its own window, into an array in memory;
 * ``warp_tiled -> GeoTIFF``: the same, each tile written into a tiled GeoTIFF: memory is one
   tile and its window;
 * ``warp_dask threads`` and ``warp_dask processes`` with 1 and 2 workers:
-  :func:`rsgeo.tiling.warp_dask` computed by Dask's thread or process scheduler into an array.
+  :func:`rsgeo.resample.warp_dask` computed by Dask's thread or process scheduler into an array.
 
 Each case runs in a fresh Python process (``--case``), which imports rsgeo, warms the kernels
 on a small warp (so Numba's cache loading is not timed), then times the case once; the parent
@@ -98,7 +98,7 @@ def child(case, workers, n, tile, method, folder):
 
     import rasterio
 
-    from rsgeo import tiling
+    from rsgeo import resample
     from rsgeo.resample import warp
 
     source = Path(folder) / "source.tif"
@@ -111,20 +111,20 @@ def child(case, workers, n, tile, method, folder):
             image = dataset.read(1)
         out = warp(image, model, shape, grid, method=method)
     elif case == "warp_tiled -> array":
-        out = tiling.warp_tiled(source, model, shape, grid, (tile, tile), method=method)
+        out = resample.warp_tiled(source, model, shape, grid, (tile, tile), method=method)
     elif case == "warp_tiled -> GeoTIFF":
         result = result.with_suffix(".tif")
         with rasterio.open(result, "w", driver="GTiff", width=shape[1], height=shape[0],
                            count=1, dtype="uint8", transform=grid, tiled=True,
                            blockxsize=256, blockysize=256) as dataset:
-            tiling.warp_tiled(source, model, shape, grid, (tile, tile), method=method,
+            resample.warp_tiled(source, model, shape, grid, (tile, tile), method=method,
                               out=dataset)
         out = None
     else:
         import dask
 
         scheduler = case.split()[-1]
-        array = tiling.warp_dask(source, model, shape, grid, (tile, tile), method=method)
+        array = resample.warp_dask(source, model, shape, grid, (tile, tile), method=method)
         with dask.config.set(scheduler=scheduler, num_workers=workers):
             out = array.compute()
     seconds = time.perf_counter() - start

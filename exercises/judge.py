@@ -7,16 +7,17 @@ answer variables (the names the student edition sets to ``...``) out of the kern
 code ever runs, executes the course's notebook with its worked solutions (once per process,
 :func:`course_scopes`) and evaluates each task's check cell there, with the course's own inputs
 and the student's answers put in place of the course's. Nothing a student does in the kernel
-(replace ``Verdict.ok``, ``numpy.isclose``, a helper of ``rsgeo.exercises``, the grader's code,
+(replace ``Verdict.ok``, ``numpy.isclose``, a helper of ``rsgeo_course.exercises``, the
+grader's code,
 redefine an input such as ``dx, dy = 0.0, 0.0``) reaches the check.
 
 One tolerance rule for every numeric check
 ------------------------------------------
-The checks themselves apply it (``rsgeo.exercises.engine.accepts_rounded``), so a student sees in
-the notebook the verdict the grader gives: an answer is right within the check's own tolerance,
-read as the decimal it prints as (a float32 ``28.6`` is judged as 28.6, not 28.600000381), or
-when it is the right answer rounded to the decimals it is written with (2 or more), within 1 % of
-it, and no mistake the check recognises rounds to it too.
+The checks themselves apply it (``rsgeo_course.exercises.engine.accepts_rounded``), so a
+student sees in the notebook the verdict the grader gives: an answer is right within the
+check's own tolerance, read as the decimal it prints as (a float32 ``28.6`` is judged as
+28.6, not 28.600000381), or when it is the right answer rounded to the decimals it is
+written with (2 or more), within 1 % of it, and no mistake the check recognises rounds to it too.
 """
 
 import ast
@@ -221,7 +222,7 @@ def _one_verdict(call, scope, answers, checks):
         function = getattr(checks, getattr(call.func, "id", ""), None)
     if function is None:
         raise ValueError(f"the course's check cell calls {ast.unparse(call.func)}, "
-                         "not a check of rsgeo.exercises")
+                         "not a check of rsgeo_course.exercises")
     args = [eval(compile(ast.Expression(arg), "<check>", "eval"), scope) for arg in call.args]
     kwargs = {keyword.arg: eval(compile(ast.Expression(keyword.value), "<check>", "eval"), scope)
               for keyword in call.keywords}
@@ -256,7 +257,7 @@ def judge(task, scope, answers):
     list of str
         ``[verdict, message, hint]``: "Correct", "Not yet", "not attempted" or "error: ...".
     """
-    from rsgeo import exercises
+    from rsgeo_course import exercises
 
     scope = dict(scope)
     scope.update(answers)

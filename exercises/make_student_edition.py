@@ -12,7 +12,8 @@ publishes as its own repository (never the course's, which holds the worked solu
 - ``exercises/`` with every solution removed: in each exercise notebook the lines of a code cell
   between ``### BEGIN SOLUTION`` and ``### END SOLUTION`` (both included) go, leaving the task's
   ``answer = ...`` placeholder and the check that follows it, shown rather than hidden;
-- ``rsgeo/`` (the package and its data), ``pyproject.toml``, ``requirements.txt`` and
+- ``rsgeo/`` (the library and its data), ``rsgeo_course/`` (the course's checks, figure
+  descriptions and translations), ``pyproject.toml``, ``requirements.txt`` and
   ``LICENSE``, so that ``pip install -r requirements.txt`` works from the edition alone;
 - its own ``README.md``, for students, in English and Portuguese.
 
@@ -52,6 +53,7 @@ BEGIN, END = "### BEGIN SOLUTION", "### END SOLUTION"
 # experiment harness, benchmarks/ga_experiments.py, beside the saved tables
 SOURCES = ("_config.yml", "_config_pt.yml", "_toc.yml", "references.bib", "book", "exercises",
            "locales", "benchmarks/results", "benchmarks/ga_experiments.py", "rsgeo",
+           "rsgeo_course",
            "pyproject.toml", "requirements.txt", "LICENSE")
 CONFIGS = ("_config.yml", "_config_pt.yml")
 # never copied: build products and caches; of exercises/, only the exercise notebooks are (the

@@ -10,18 +10,20 @@ Markdown, rsgeo's messages):
    ``sphinx-intl update -l pt_BR -d locales``: new paragraphs arrive untranslated, changed ones
    fuzzy (with the old translation as a suggestion), removed ones are dropped.
    Docstrings on the API page are not in the templates (book/_ext/i18n_book.py).
-2. rsgeo: the messages wrapped in ``_()`` / ``N_()`` in rsgeo/ (:func:`rsgeo_messages`; the
-   exercise checks' hints are ``N_()`` in their declarations) update
-   ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, which is compiled to \
-``rsgeo.mo`` (shipped, so that rsgeo needs no Babel at run time;
-   tests/test_i18n.py checks that it is current).
+2. rsgeo and the course: the messages wrapped in ``_()`` / ``N_()`` in rsgeo/ and in
+   rsgeo_course/ (:func:`messages_of`; the exercise checks' hints are ``N_()`` in their
+   declarations) update ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po`` and
+   ``rsgeo_course/locale/pt_BR/LC_MESSAGES/rsgeo_course.po``, compiled to ``.mo`` files
+   (shipped, so that neither needs Babel at run time; tests/test_i18n.py checks that they are
+   current).
 3. ``_config_pt.yml`` is remade from ``_config.yml`` (:func:`portuguese_config`).
 4. The figures (``--figures``, also part of the full update): the texts the notebooks' code gives
    matplotlib (titles, axis labels, legends, colour-bar labels, text and annotations) and the
    column and index names of the tables they build, found statically (:func:`figure_messages`;
    an f-string is a template, each field a ``{}``), update
-   ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo_figures.po``, compiled to ``rsgeo_figures.mo``, which
-   :mod:`rsgeo.figure_language` applies to every figure the Portuguese book renders.
+   ``rsgeo_course/locale/pt_BR/LC_MESSAGES/rsgeo_figures.po``, compiled to
+   ``rsgeo_figures.mo``, which :mod:`rsgeo_course.figure_language` applies to every figure the
+   Portuguese book renders.
 
 Then translate what ``python locales/update.py --stat`` (or tests/test_i18n.py) reports missing.
 """
@@ -37,7 +39,10 @@ ROOT = Path(__file__).resolve().parents[1]
 LOCALES = ROOT / "locales"
 LANGUAGE = "pt_BR"
 RSGEO_PO = ROOT / "rsgeo" / "locale" / LANGUAGE / "LC_MESSAGES" / "rsgeo.po"
-FIGURES_PO = RSGEO_PO.with_name("rsgeo_figures.po")
+COURSE_PO = ROOT / "rsgeo_course" / "locale" / LANGUAGE / "LC_MESSAGES" / "rsgeo_course.po"
+FIGURES_PO = COURSE_PO.with_name("rsgeo_figures.po")
+#: Each package's catalogue of messages (the figures' texts are the course's, apart)
+MESSAGE_PO = {"rsgeo": RSGEO_PO, "rsgeo_course": COURSE_PO}
 #: gettext build settings: the English text only, nothing executed
 GETTEXT_OVERRIDES = {"nb_execution_mode": "off", "gettext_compact": False,
                      "gettext_additional_targets": [], "latex_individualpages": False}
@@ -95,53 +100,72 @@ def update_book(templates, only_new=False, pages=None):
                     "-l", LANGUAGE, "-d", str(LOCALES)], check=True, cwd=ROOT)
 
 
-def rsgeo_messages():
-    """``{message: (file, line)}``: every message rsgeo can show a student in its language.
+def messages_of(package="rsgeo"):
+    """``{message: (file, line)}``: every message ``package`` can show in its language.
 
-    The messages wrapped in ``_()`` or ``N_()`` anywhere in rsgeo/ (a message is translated
-    before it is filled in, so the marker holds the whole format string).
+    The messages wrapped in ``_()`` or ``N_()`` anywhere in the package's folder (a message is
+    translated before it is filled in, so the marker holds the whole format string): rsgeo's
+    (errors, figure labels, widget controls) or the course's (``rsgeo_course``: the exercise
+    checks' verdicts and hints, the figure descriptions).
     """
     from babel.messages.extract import extract_from_dir
 
     messages = {}
     for filename, line, message, _, _ in extract_from_dir(
-            str(ROOT / "rsgeo"), keywords={"_": None, "N_": None}):
-        messages.setdefault(message, (f"rsgeo/{filename}", line))
+            str(ROOT / package), keywords={"_": None, "N_": None}):
+        messages.setdefault(message, (f"{package}/{filename}", line))
     return messages
 
 
-def update_rsgeo():
-    """Bring rsgeo.po in line with :func:`rsgeo_messages` (new messages untranslated, gone ones
-    dropped, none fuzzy-matched), then compile it."""
+def rsgeo_messages():
+    """``{message: (file, line)}``: every message rsgeo can show in its language."""
+    return messages_of("rsgeo")
+
+
+def course_messages():
+    """``{message: (file, line)}``: every message the course's package can show."""
+    return messages_of("rsgeo_course")
+
+
+def update_messages(package="rsgeo"):
+    """Bring ``package``'s catalogue in line with :func:`messages_of` (new messages
+    untranslated, gone ones dropped, none fuzzy-matched), then compile it. A message new to
+    one catalogue takes the translation the other one holds, if any (a message that moves
+    between rsgeo and the course keeps its Portuguese)."""
     from babel.messages.catalog import Catalog
     from babel.messages.pofile import read_po, write_po
 
-    template = Catalog(project="rsgeo", fuzzy=False)
-    for message in rsgeo_messages():
+    po = MESSAGE_PO[package]
+    template = Catalog(project=package, fuzzy=False)
+    for message in messages_of(package):
         template.add(message)
-    if RSGEO_PO.exists():
-        with open(RSGEO_PO, "rb") as handle:
+    if po.exists():
+        with open(po, "rb") as handle:
             catalogue = read_po(handle, locale=LANGUAGE)
     else:
-        catalogue = Catalog(locale=LANGUAGE, project="rsgeo", fuzzy=False,
+        catalogue = Catalog(locale=LANGUAGE, project=package, fuzzy=False,
                             language_team="pt_BR <LL@li.org>")
-        RSGEO_PO.parent.mkdir(parents=True, exist_ok=True)
+        po.parent.mkdir(parents=True, exist_ok=True)
     catalogue.update(template, no_fuzzy_matching=True, update_header_comment=False)
-    with open(RSGEO_PO, "wb") as handle:
+    known = {}
+    for other in MESSAGE_PO.values():
+        if other != po and other.exists():
+            with open(other, "rb") as handle:
+                known.update({entry.id: entry.string for entry in read_po(handle)
+                              if entry.id and entry.string and not entry.fuzzy})
+    for entry in catalogue:
+        if entry.id and not entry.string and entry.id in known:
+            entry.string = known[entry.id]
+    with open(po, "wb") as handle:
         write_po(handle, catalogue, width=96, no_location=True, sort_output=True,
                  ignore_obsolete=True)
-    compile_rsgeo()
+    compile_catalogue(po)
 
 
-def compile_rsgeo():
-    """Compile rsgeo.po to rsgeo.mo beside it (translated, not fuzzy entries only)."""
-    from babel.messages.mofile import write_mo
-    from babel.messages.pofile import read_po
-
-    with open(RSGEO_PO, "rb") as handle:
-        catalogue = read_po(handle, locale=LANGUAGE)
-    with open(RSGEO_PO.with_suffix(".mo"), "wb") as handle:
-        write_mo(handle, catalogue, use_fuzzy=False)
+def update_rsgeo():
+    """Bring rsgeo.po and rsgeo_course.po in line with their packages' messages."""
+    for package in MESSAGE_PO:
+        update_messages(package)
 
 
 # -- The figures' texts ---------------------------------------------------------------------
@@ -326,7 +350,7 @@ def _code_cells(path):
 
 def figure_messages(paths=None):
     """``{message: (notebook, cell number)}``: every text the notebooks' code gives a figure or
-    a table, for the figures' catalogue (:mod:`rsgeo.figure_language` translates them).
+    a table, for the figures' catalogue (:mod:`rsgeo_course.figure_language` translates them).
 
     Collected statically from each code cell's syntax tree: the string arguments of matplotlib's
     text calls (:data:`TEXT_CALLS`) and the string values of the text keywords
@@ -543,7 +567,8 @@ def statistics():
     from babel.messages.pofile import read_po
 
     missing = 0
-    for po in sorted([*LOCALES.glob(f"{LANGUAGE}/LC_MESSAGES/**/*.po"), RSGEO_PO, FIGURES_PO]):
+    for po in sorted([*LOCALES.glob(f"{LANGUAGE}/LC_MESSAGES/**/*.po"), RSGEO_PO, COURSE_PO,
+                      FIGURES_PO]):
         if not po.exists():
             continue
         with open(po, "rb") as handle:
@@ -569,7 +594,8 @@ def main(argv=None):
                              "repeatable): the templates are built in a folder of their own, "
                              "so that two people can update different pages at once")
     parser.add_argument("--rsgeo", action="store_true",
-                        help="only update and compile rsgeo's own catalogue (rsgeo.po)")
+                        help="only update and compile the messages' catalogues (rsgeo.po, "
+                             "rsgeo_course.po)")
     parser.add_argument("--figures", action="store_true",
                         help="only update and compile the figures' catalogue (rsgeo_figures.po) "
                              "from the notebooks' code")

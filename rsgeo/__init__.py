@@ -24,7 +24,7 @@ One module per topic of the course:
 - :mod:`rsgeo.tiepoints` - local shifts by correlation (``measure_shifts``), automatic tie
   points by correlation and by features, and the registration pipeline they share with the GA
   (chapter 6c);
-- :mod:`rsgeo.exercises` - the exercises' checks, declared per exercise notebook;
+- :mod:`rsgeo_course.exercises` - the exercises' checks, declared per exercise notebook;
 - :mod:`rsgeo.errors` - the errors rsgeo raises, every one a ``ValueError``;
 - :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets on top of the maths.
 """

@@ -2,8 +2,8 @@
 
 Numba caches a compiled function (``cache=True``) beside its source, keyed on
 that source file alone: a kernel of :mod:`rsgeo.resample` that calls
-:func:`rsgeo.transformer.row_positions` keeps the old machine code of the
-callee after ``transformer.py`` changes and ``resample.py`` does not (Numba's
+:func:`rsgeo._kernels.transformer.row_positions` keeps the old machine code of
+the callee after ``transformer.py`` changes and ``resampling.py`` does not (Numba's
 documented limitation, "Notes on caching"). A course updated by ``git pull``
 into an editable install changes files one by one, so at import rsgeo
 compares a fingerprint of its compiled modules' sources with the one stored
@@ -21,8 +21,10 @@ from pathlib import Path
 
 __all__ = ["COMPILED_MODULES", "refresh"]
 
-#: rsgeo's modules with functions compiled by Numba, which may call each other.
-COMPILED_MODULES = ("matching", "resample", "terrain", "thin_plate", "transformer")
+#: rsgeo's modules with functions compiled by Numba, which may call each other (paths below
+#: the package's folder, without ``.py``; Numba caches each in its folder's ``__pycache__``).
+COMPILED_MODULES = ("_kernels/dem", "_kernels/resampling", "_kernels/rpc", "_kernels/thin_plate",
+                    "_kernels/transformer", "ortho", "registration/_genetic")
 
 _FOLDER = Path(__file__).resolve().parent
 _STAMP = "rsgeo-compiled-sources.sha256"
@@ -57,8 +59,9 @@ def refresh(folder=_FOLDER):
         pass
     removed = False
     for name in COMPILED_MODULES:
-        for pattern in (f"{name}.*.nbi", f"{name}.*.nbc"):
-            for path in cache.glob(pattern):
+        module = folder / name
+        for pattern in (f"{module.name}.*.nbi", f"{module.name}.*.nbc"):
+            for path in (module.parent / "__pycache__").glob(pattern):
                 path.unlink(missing_ok=True)
                 removed = True
     try:

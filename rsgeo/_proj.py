@@ -46,7 +46,7 @@ def operations(src_wkt, dst_wkt):
     """Every operation PROJ knows from one CRS to another, as a pyproj TransformerGroup.
 
     Its ``transformers`` are those PROJ can apply here, its ``unavailable_operations`` those
-    whose grids it does not find (rsgeo.georef.transformations reports which; pyproj's
+    whose grids it does not find (rsgeo.crs.transformations reports which; pyproj's
     warning that the best one is missing is left out).
     """
     import warnings

@@ -16,11 +16,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ._checks import as_points
-from ._i18n import _
-from .accuracy import _as_flags, residuals
+from .accuracy import residuals
+from .accuracy._residuals import as_flags
 from .errors import CRSError, DataError, GCPError
+from .language import _
 from .transforms import fit_transform, registered
+from .validation import as_points
 
 __all__ = ["GCPSet", "read_points", "write_points"]
 
@@ -44,19 +45,19 @@ class GCPSet:  # numpydoc ignore=PR02
     notes : sequence of str, optional
         What each GCP is on the ground ("road crossing", "field corner").
     reliability : pandas.DataFrame, optional
-        Set by :func:`rsgeo.tiepoints.correlation_tiepoints`: per window, the
+        Set by :func:`rsgeo.registration.correlation_tiepoints`: per window, the
         correlation peak, its reliability, error, contrast and last shift.
     passes : list of dict, optional
-        Set by :func:`rsgeo.tiepoints.correlation_tiepoints`: per pass, the
+        Set by :func:`rsgeo.registration.correlation_tiepoints`: per pass, the
         reliable points and the median shift, pixels.
     n_keypoints : (int, int), optional
-        Set by :func:`rsgeo.tiepoints.feature_tiepoints`: keypoints found in
+        Set by :func:`rsgeo.registration.feature_tiepoints`: keypoints found in
         the reference and in the moving image.
     n_matches : int, optional
-        Set by :func:`rsgeo.tiepoints.feature_tiepoints`: descriptor matches
+        Set by :func:`rsgeo.registration.feature_tiepoints`: descriptor matches
         before RANSAC.
     candidates : GCPSet, optional
-        Set by :func:`rsgeo.tiepoints.feature_tiepoints`: every match, with
+        Set by :func:`rsgeo.registration.feature_tiepoints`: every match, with
         ``enabled`` flagging RANSAC's inliers.
     """
 
@@ -66,7 +67,7 @@ class GCPSet:  # numpydoc ignore=PR02
     ids: list = None
     crs: str = None
     notes: list = None
-    # what found the GCPs says how (rsgeo.tiepoints); None for GCPs picked by hand or read
+    # what found the GCPs says how (rsgeo.registration); None for GCPs picked by hand or read
     reliability: object = None
     passes: list = None
     n_keypoints: tuple = None
@@ -82,7 +83,7 @@ class GCPSet:  # numpydoc ignore=PR02
             raise GCPError(_("map_xy and image_xy must hold the same GCPs, got {n} and "
                              "{n_values}").format(n=n, n_values=len(self.image_xy)))
         self.enabled = (np.ones(n, bool) if self.enabled is None
-                        else np.array(_as_flags(self.enabled, "enabled")))
+                        else np.array(as_flags(self.enabled, "enabled")))
         if self.enabled.shape != (n,):
             raise GCPError(_("enabled must have one flag per GCP ({n}), got shape "
                              "{shape}").format(n=n, shape=self.enabled.shape))
@@ -127,7 +128,7 @@ class GCPSet:  # numpydoc ignore=PR02
         """The same GCPs with their map coordinates transformed to ``crs`` by PROJ.
 
         Image coordinates, flags, ids and notes are kept. The datum transformation
-        is :func:`rsgeo.georef.transform_points`' (the same PROJ with rsgeo's grids:
+        is :func:`rsgeo.crs.transform_points`' (the same PROJ with rsgeo's grids:
         SAD69 -> SIRGAS 2000 by IBGE's grid, EPSG:5528, where it applies); points
         outside the CRSs' areas of use are not refused.
 

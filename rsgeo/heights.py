@@ -26,9 +26,9 @@ from functools import cache
 
 import numpy as np
 
-from ._i18n import _
 from ._proj import GRIDS, transformer
 from .errors import DataError, GridError
+from .language import _
 
 __all__ = ["GEOIDS", "VERTICAL_DATUMS", "geoid_undulation", "geoid_coverage",
            "geoid_on_grid", "to_ellipsoidal", "check_vertical"]
@@ -214,7 +214,7 @@ def geoid_on_grid(transform, shape, crs=None, geoid="EGM96"):
     >>> n.shape, bool((-5.5 < n).all() and (n < -5.3).all())
     ((3, 4), True)
     """
-    from ._checks import as_shape
+    from .validation import as_shape
 
     return _add_geoid(np.zeros(as_shape(shape, "shape")), transform, crs, geoid)
 
@@ -223,11 +223,10 @@ def _add_geoid(heights, transform, crs, geoid):
     """Add N at each cell centre of a grid to ``heights`` (float64, (rows, cols)) in place and
     return it: strip by strip of rows, so that a DEM becomes H + N without a second array of
     its size (see :func:`geoid_on_grid`)."""
-    from ._checks import as_crs
-    from .data import _as_affine
+    from .validation import as_affine, as_crs
 
     _geoid(geoid)
-    gt = _as_affine(transform, "transform")
+    gt = as_affine(transform, "transform", gdal_tuple=True)
     crs = as_crs("EPSG:4326" if crs is None else crs, "crs")
     to_lon_lat = None if crs.to_epsg() == 4326 else transformer(crs.to_wkt(), "EPSG:4326")
     rows, cols = heights.shape

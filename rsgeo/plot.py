@@ -1,6 +1,11 @@
-"""Figures for the course, on top of the maths: titles, axes with units, colour bars.
+"""Figures of rsgeo's results, on top of the maths: titles, axes with units, colour bars.
 
 Kept apart from the core modules so that rsgeo's maths never imports matplotlib.
+
+A figure rsgeo renders as an image (a widget's frame, an animation's player) carries
+alternative text for a reader who cannot see it: by default its titles; a package that
+describes figures fully (the course's, for one) installs its describer with
+:func:`set_figure_describer`.
 """
 
 import re
@@ -8,17 +13,82 @@ import weakref
 
 import numpy as np
 
-from ._i18n import N_, _, prose_number
 from .errors import GCPError, RsgeoError
-from .figure_language import translate_text
+from .language import N_, _, prose_number
 from .radiometry import apply_gain_offset, concatenate_halves, seam_metrics
 from .resample import bilinear_weights, keys_weights
 
 __all__ = [
     "show_image", "grid_path", "draw_grid", "draw_mesh", "draw_neighbour_weights",
     "draw_stretch_frame", "fix_layout", "animation_html", "label_points", "draw_residual_arrows",
-    "draw_tiepoints",
+    "draw_tiepoints", "set_figure_describer", "figure_description",
 ]
+
+# describe(figure) -> str, installed by set_figure_describer; None: the figure's titles
+_describer = None
+
+
+def set_figure_describer(describe):
+    """Use ``describe`` for the alternative text of every figure rsgeo renders as an image.
+
+    Parameters
+    ----------
+    describe : callable or None
+        ``describe(figure) -> str``; None restores the default (the figure's titles).
+
+    Returns
+    -------
+    callable or None
+        The describer used until now, so that a caller can restore it.
+
+    Raises
+    ------
+    TypeError
+        If ``describe`` is neither callable nor None.
+
+    Examples
+    --------
+    >>> previous = set_figure_describer(lambda figure: "a test figure")
+    >>> set_figure_describer(previous) is not None
+    True
+    """
+    global _describer
+    if describe is not None and not callable(describe):
+        raise TypeError(f"set_figure_describer needs a function of a figure or None, got "
+                        f"{type(describe).__name__}")
+    previous, _describer = _describer, describe
+    return previous
+
+
+def figure_description(figure):
+    """The alternative text of ``figure``: the installed describer's, else its titles.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+
+    Returns
+    -------
+    str
+        What the figure shows, for the ``alt`` of its image.
+
+    Examples
+    --------
+    >>> from matplotlib.figure import Figure
+    >>> figure = Figure()
+    >>> _ = figure.subplots().set_title("slope")
+    >>> previous = set_figure_describer(None)
+    >>> figure_description(figure)
+    'Figure “slope”.'
+    >>> _ = set_figure_describer(previous)
+    """
+    if _describer is not None:
+        return _describer(figure)
+    titles = [text for text in [figure._suptitle.get_text() if figure._suptitle else ""]
+              + [ax.get_title() for ax in figure.axes] if text]
+    if not titles:
+        return _("Untitled figure.")
+    return _("Figure “{titles}”.").format(titles="”, “".join(titles))
 
 
 def _pyplot():
@@ -107,7 +177,7 @@ def grid_path(lines):
     Parameters
     ----------
     lines : sequence of (cols, rows) pairs
-        As :func:`rsgeo.distortion.distorted_grid` returns them.
+        As :func:`rsgeo.sensors.distorted_grid` returns them.
 
     Returns
     -------
@@ -139,7 +209,7 @@ def grid_path(lines):
 
 
 def draw_grid(ax, lines, **style):
-    """Draw grid lines given as (cols, rows) pairs (e.g. from rsgeo.distortion.distorted_grid).
+    """Draw grid lines given as (cols, rows) pairs (e.g. from rsgeo.sensors.distorted_grid).
 
     Parameters
     ----------
@@ -432,9 +502,9 @@ def animation_html(animation):
     Jupyter already provide Font Awesome, whose ``fa fa-play`` classes the buttons use).
 
     The player says what it shows: its frame image's ``alt`` is
-    :func:`rsgeo.alt_text.describe_figure` of the first frame, with the number of frames; the
+    :func:`figure_description` of the first frame, with the number of frames; the
     frame slider is labelled ("frame"), and every button's ``title`` and ``aria-label`` and
-    the repetition modes' labels are in rsgeo's language (``rsgeo._i18n``: "Play" is
+    the repetition modes' labels are in rsgeo's language (``rsgeo.language``: "Play" is
     "Reproduzir" in Portuguese).
 
     The animation's figure is closed, so that the notebook does not show it a
@@ -477,17 +547,15 @@ def animation_html(animation):
 
     from IPython.display import HTML
 
-    from .alt_text import describe_figure
-
     figure = animation._fig
     first_frame = {}
     draw_next_frame = animation._draw_next_frame
 
     def draw_and_remember_the_first(*args, **kwargs):
         # the first frame is described once it has been saved (a translation of the figure's
-        # texts, rsgeo.figure_language, happens as a frame is saved), before the second is drawn
+        # texts, by a hook on saving, happens as a frame is saved), before the second is drawn
         if first_frame.get("drawn") and "description" not in first_frame:
-            first_frame["description"] = describe_figure(figure)
+            first_frame["description"] = figure_description(figure)
         first_frame["drawn"] = True
         return draw_next_frame(*args, **kwargs)
 
@@ -500,7 +568,7 @@ def animation_html(animation):
             del animation._draw_next_frame      # the class's method again
         else:
             animation._draw_next_frame = own
-    description = first_frame.get("description") or describe_figure(figure)
+    description = first_frame.get("description") or figure_description(figure)
     _pyplot().close(figure)
     frames = re.search(r"new Array\((\d+)\)", html)
     alt = _("Animation of {count} frames; the first: {description}").format(
@@ -625,7 +693,7 @@ def draw_residual_arrows(ax, image_xy, dx, dy, exaggeration=20.0, key_px=2.0, co
 
 # -- Tie points (chapter 6c) --------------------------------------------------
 
-# marker colour of each tie-point verdict of rsgeo.tiepoints.correlation_tiepoints.
+# marker colour of each tie-point verdict of rsgeo.registration.correlation_tiepoints.
 _TIEPOINT_COLOURS = {N_("reliable"): "tab:green", N_("outlier"): "tab:red",
                      N_("weak peak"): "tab:orange", N_("low contrast"): "tab:purple",
                      N_("constant"): "tab:pink", N_("invalid"): "tab:gray"}
@@ -642,7 +710,7 @@ def draw_tiepoints(ax, points, notes, size=30, colours=None):
         Positions (col, row), or map (x, y) on an axis drawn in map units.
     notes : sequence of str
         One verdict per point, as ``GCPSet.notes`` of
-        :func:`rsgeo.tiepoints.correlation_tiepoints` ("reliable", "outlier", ...).
+        :func:`rsgeo.registration.correlation_tiepoints` ("reliable", "outlier", ...).
     size : float
         Marker area, points².
     colours : dict, optional
@@ -671,7 +739,7 @@ def draw_tiepoints(ax, points, notes, size=30, colours=None):
         artists[verdict] = ax.scatter(*points[chosen].T, s=size, edgecolor="black", linewidth=0.5,
                                       color=colours.get(verdict, "tab:blue"),
                                       label=_("{verdict} ({count})").format(
-                                          verdict=translate_text(verdict),
+                                          verdict=_(verdict),
                                           count=int(chosen.sum())),
                                       zorder=3)
     return artists

@@ -21,10 +21,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import as_integer, as_number, check_choice
-from ._i18n import _
 from .errors import CRSError, GridError, ImageError, RsgeoError
+from .language import _
 from .resample import interpolate
+from .validation import as_integer, as_number, check_choice
 
 __all__ = [
     "FIT_METHODS", "GainOffsetFit", "mean_filter", "fit_gain_offset", "apply_gain_offset",
@@ -424,7 +424,7 @@ def overlap(raster_a, raster_b):
         raise CRSError(_("the rasters are in different CRSs ({value} and {value2}); "
                          "pairing them pixel by pixel would mix two datums or "
                          "projections: reproject one first with "
-                         "rsgeo.georef.reproject(raster, dst_crs)").format(
+                         "rsgeo.resample.reproject(raster, dst_crs)").format(
                 value=raster_a.crs or 'no CRS', value2=raster_b.crs or 'no CRS'))
     west_a, south_a, east_a, north_a = raster_a.bounds
     west_b, south_b, east_b, north_b = raster_b.bounds

@@ -8,8 +8,8 @@ Every widget answers at once: it builds its figure once, and a control's
 change updates that figure's artists in place (``set_data``, ``set_offsets``,
 bar heights, titles) and puts a new PNG of the same figure in the widget's
 ``ipywidgets.Output``, as an ``<img>`` whose alternative text says what the
-frame shows (:func:`rsgeo.alt_text.describe_figure`). Control names and the
-figures' texts are in rsgeo's language (``rsgeo._i18n``). Expensive
+frame shows (:func:`rsgeo.plot.figure_description`). Control names and the
+figures' texts are in rsgeo's language (``rsgeo.language``). Expensive
 inputs (fitted models, GA runs) are computed once and kept. The box a widget
 function returns carries that figure as its ``figure`` attribute
 (``benchmarks/widgets.py`` times every control).
@@ -22,12 +22,18 @@ from html import escape
 
 import numpy as np
 
-from . import accuracy, distortion, matching, radiometry, transforms
-from ._checks import as_number, check_choice
-from ._i18n import _, prose_number
-from .alt_text import describe_figure
+from . import accuracy, distortion, radiometry, registration, transforms
 from .errors import GCPError, GridError, RsgeoError
-from .plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path
+from .language import _, prose_number
+from .plot import (
+    draw_grid,
+    draw_mesh,
+    draw_stretch_frame,
+    figure_description,
+    fix_layout,
+    grid_path,
+)
+from .validation import as_number, check_choice
 
 __all__ = [
     "DPI", "render_png", "distortion_explorer", "gcp_explorer",
@@ -101,7 +107,7 @@ def _frame_output(figure):
     """A widget's frame: a PNG of the figure with its alternative text, as a display output.
 
     Jupyter, Colab and the book's widget manager show the ``text/html``: an ``<img>`` whose
-    ``alt`` is :func:`rsgeo.alt_text.describe_figure` of the figure (made after the PNG, so
+    ``alt`` is :func:`rsgeo.plot.figure_description` of the figure (made after the PNG, so
     that it reads the figure's texts as rendered, translated when the book is Portuguese); a
     text-only front end shows the description. The PNG is not given a second time as
     ``image/png``: it would double every frame a saved widget page carries.
@@ -125,13 +131,13 @@ def _frame_output(figure):
     >>> frame = _frame_output(figure)
     >>> sorted(frame["data"])
     ['text/html', 'text/plain']
-    >>> frame["data"]["text/plain"]
-    'Figure “nothing yet”: nothing drawn.'
-    >>> 'alt="Figure “nothing yet”: nothing drawn."' in frame["data"]["text/html"]
+    >>> frame["data"]["text/plain"] == figure_description(figure)
+    True
+    >>> f'alt="{figure_description(figure)}"' in frame["data"]["text/html"]
     True
     """
     png = base64.b64encode(render_png(figure)).decode("ascii")
-    description = describe_figure(figure)
+    description = figure_description(figure)
     html = (f'<img src="data:image/png;base64,{png}" alt="{escape(description)}" '
             'style="max-width: 100%; height: auto">')
     return {"output_type": "display_data",
@@ -405,7 +411,7 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
 
     Parameters
     ----------
-    reference, adjustment : rsgeo.matching.Mesh
+    reference, adjustment : rsgeo.registration.Mesh
     truth : array_like of int
         The true matching (reference label of each adjustment segment).
     seed : int
@@ -459,7 +465,7 @@ def ga_evolution(reference, adjustment, truth, seed=0, generations=80):
     def update():
         key = (population.value, elite.value, mutation.value, selection.value)
         if key not in runs:
-            runs[key] = matching.genetic_match(
+            runs[key] = registration.genetic_match(
                 reference, adjustment, seed=seed, population_size=population.value,
                 generations=generations, elite_fraction=elite.value, mutation_rate=mutation.value,
                 selection=selection.value, tournament_size=3)   # as chapter 6b's runs
@@ -485,7 +491,7 @@ def draw_evolution_frame(reference, adjustment, truth, history, figure=None, gen
 
     Parameters
     ----------
-    reference, adjustment : rsgeo.matching.Mesh
+    reference, adjustment : rsgeo.registration.Mesh
     truth : array_like of int
         The true matching, to colour match lines green (right) or red (wrong).
     history : list of dict

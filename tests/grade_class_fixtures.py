@@ -101,12 +101,12 @@ def _answers(notebook, shift, hrc):
 
 CHEAT_CHECKS = """\
 import numpy
-import rsgeo.exercises
-import rsgeo.exercises.engine
-rsgeo.exercises.Verdict.ok = property(lambda self: True)
+import rsgeo_course.exercises
+import rsgeo_course.exercises.engine
+rsgeo_course.exercises.Verdict.ok = property(lambda self: True)
 numpy.isclose = lambda *args, **kwargs: True
 numpy.allclose = lambda *args, **kwargs: True
-rsgeo.exercises.engine._near = lambda *args, **kwargs: True
+rsgeo_course.exercises.engine._near = lambda *args, **kwargs: True
 """
 
 CHEAT_GRADER = """\

@@ -5,7 +5,7 @@ import affine
 import numpy as np
 import pytest
 
-from rsgeo import accuracy, data, gcp, transforms
+from rsgeo import accuracy, data, gcp, registration, transforms
 from rsgeo.errors import GCPError
 from rsgeo.resample import grid_positions
 
@@ -196,8 +196,7 @@ def test_refine_gcps_takes_any_kind_and_register_calls_it():
     _, by_name = accuracy.refine_gcps(map_xy, image_xy, "helmert", 2.5)
     _, by_kind = accuracy.refine_gcps(map_xy, image_xy, None, 2.5, kind="helmert")
     assert (by_name == by_kind).all()
-    from rsgeo import tiepoints
-    result = tiepoints.register(gcp.GCPSet(map_xy, image_xy), "helmert", tolerance=2.5)
+    result = registration.register(gcp.GCPSet(map_xy, image_xy), "helmert", tolerance=2.5)
     assert (result.kept == by_name).all()
     with pytest.raises(ValueError, match="min_gcps must be at least 2 for 'helmert'"):
         accuracy.refine_gcps(map_xy, image_xy, "helmert", 2.5, min_gcps=1)

@@ -1,4 +1,4 @@
-"""Every figure says what it shows: rsgeo.alt_text.describe_figure, the PNG description the
+"""Every figure says what it shows: rsgeo_course.alt_text.describe_figure, the PNG description the
 book's kernels write (book/_ext/figure_audit.py) and the alt the book gives it
 (book/_ext/figure_alt.py), and the animation player's alternative text and control names
 (rsgeo.plot.animation_html)."""
@@ -15,9 +15,9 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from rsgeo import _i18n  # noqa: E402
-from rsgeo.alt_text import MAX_LENGTH, describe_figure  # noqa: E402
+from rsgeo import language as _i18n  # noqa: E402
 from rsgeo.plot import animation_html  # noqa: E402
+from rsgeo_course.alt_text import MAX_LENGTH, describe_figure  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

@@ -77,7 +77,7 @@ def polynomial():
 
 def systematic():
     grid = np.array([[10.0, 20.0], [150.0, 150.0], [290.0, 280.0]])
-    return rsgeo.distortion.SystematicDistortion(skew_per_line=0.1, yaw_rate_deg_per_line=0.02,
+    return rsgeo.sensors.SystematicDistortion(skew_per_line=0.1, yaw_rate_deg_per_line=0.02,
                                                  scale=1.05, shape=(300, 300)), grid
 
 

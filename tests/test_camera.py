@@ -1,18 +1,18 @@
-"""rsgeo.camera: a frame camera's collinearity equations and space resection, against a synthetic
+"""rsgeo.sensors: a frame camera's collinearity equations and space resection, against a synthetic
 camera with a known truth.
 
 Outside references: the collinearity equations as Wolf, Dewitt & Wilkes (Elements of
 Photogrammetry, appendix C) write them, with their M matrix element by element (written out
 below, not taken from rsgeo); scikit-image's ``ProjectiveTransform`` for the flat-terrain case;
-the relief-displacement formula d = r·h/H (``terrain.relief_displacement_photo``) for relief.
+the relief-displacement formula d = r·h/H (``relief.relief_displacement_photo``) for relief.
 """
 
 import numpy as np
 import pytest
 from skimage.transform import ProjectiveTransform
 
-from rsgeo import errors, terrain, transforms
-from rsgeo.camera import (
+from rsgeo import errors, relief, transforms
+from rsgeo.sensors import (
     PARAMETERS,
     ExteriorOrientation,
     FrameCamera,
@@ -257,7 +257,7 @@ def test_relief_leaves_the_projective_model_the_relief_displacement_r_h_over_h()
     residual_mm = (model(checks[:, :2]) - check_image) * [1, -1] * interior.pixel_mm
     photo = interior.to_photo(check_image)
     radius = np.hypot(*photo.T)
-    expected = terrain.relief_displacement_photo(checks[:, 2], radius, 3000.0)
+    expected = relief.relief_displacement_photo(checks[:, 2], radius, 3000.0)
     np.testing.assert_allclose(np.hypot(*residual_mm.T), expected, atol=1e-9)
     inward = -np.einsum("ij,ij->i", residual_mm, photo) / radius       # the model misses inwards
     np.testing.assert_allclose(inward, expected, atol=1e-9)

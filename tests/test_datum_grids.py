@@ -9,7 +9,7 @@ import pyproj
 import pytest
 import rasterio
 
-from rsgeo import data, georef
+from rsgeo import crs, data, resample
 from rsgeo._proj import GRIDS
 from rsgeo.errors import CRSError, DataError, GridError
 
@@ -32,11 +32,11 @@ def metres_apart(a, b):
 
 def gcps_lonlat():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
-    return georef.transform_points(gcps.map_xy, gcps.crs, SAD69)    # same datum: no shift
+    return crs.transform_points(gcps.map_xy, gcps.crs, SAD69)    # same datum: no shift
 
 
 def random_lonlat(grid, n=3000, seed=0):
-    west, south, east, north = georef.read_shift_grid(grid).bounds
+    west, south, east, north = crs.read_shift_grid(grid).bounds
     rng = np.random.default_rng(seed)
     return np.column_stack([rng.uniform(west, east, n), rng.uniform(south, north, n)])
 
@@ -47,13 +47,13 @@ def random_lonlat(grid, n=3000, seed=0):
 def test_grid_shift_equals_proj_hgridshift_to_far_below_a_millimetre(grid):
     proj = hgridshift(GRIDS / FILES[grid])
     for points in (gcps_lonlat(), random_lonlat(grid)):
-        mine = georef.grid_shift(points, grid)
+        mine = crs.grid_shift(points, grid)
         theirs = np.column_stack(proj.transform(points[:, 0], points[:, 1]))
         # PROJ keeps each node's shift in radians as a float32: micrometres
         assert metres_apart(mine, theirs).max() < 1e-4
         # the shift itself is tens of metres: the comparison can fail
         assert metres_apart(mine, points).min() > 10
-        back = georef.grid_shift(mine, grid, inverse=True)
+        back = crs.grid_shift(mine, grid, inverse=True)
         theirs_back = np.column_stack(proj.transform(mine[:, 0], mine[:, 1],
                                                      direction="INVERSE"))
         assert metres_apart(back, theirs_back).max() < 1e-4
@@ -64,11 +64,11 @@ def test_the_grid_shift_at_the_gcps_is_proj_s_utm_pipeline():
     # SAD69 / UTM 21S -> lon, lat -> rsgeo's grid shift -> SIRGAS 2000 / UTM 21S, against
     # transform_points (PROJ's choice, the grid) and PROJ's datum_shift result
     gcps = data.load_gcps("cbers2b_ccd_hrc")
-    moved = georef.grid_shift(gcps_lonlat(), "SAD69")
-    by_rsgeo = georef.transform_points(moved, SIRGAS, "EPSG:31981")   # same datum
-    by_proj = georef.transform_points(gcps.map_xy, gcps.crs, "EPSG:31981")
+    moved = crs.grid_shift(gcps_lonlat(), "SAD69")
+    by_rsgeo = crs.transform_points(moved, SIRGAS, "EPSG:31981")   # same datum
+    by_proj = crs.transform_points(gcps.map_xy, gcps.crs, "EPSG:31981")
     assert np.hypot(*(by_rsgeo - by_proj).T).max() < 1e-3
-    dx, dy, _distance = georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
+    dx, dy, _distance = crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
     np.testing.assert_allclose(by_rsgeo - gcps.map_xy, np.column_stack([dx, dy]), atol=1e-3)
 
 
@@ -77,16 +77,16 @@ def test_datum_shift_across_brazil_is_the_grid_where_its_area_holds_the_points()
     points = random_lonlat("SAD69", n=2000, seed=3)
     points = points[(points[:, 0] > -60.5) & (points[:, 0] < -35) & (points[:, 1] < 4.4)
                     & (points[:, 1] > -33.7)]
-    shift = georef.datum_shift(points, SAD69, SIRGAS)
+    shift = crs.datum_shift(points, SAD69, SIRGAS)
     assert shift.transformations[0].codes == ("EPSG:5528",)
     by_proj = points + np.column_stack([shift.dx, shift.dy])
     on_grid = shift.used == 0
     assert on_grid.mean() > 0.99
-    assert metres_apart(by_proj[on_grid], georef.grid_shift(points[on_grid])).max() < 1e-3
+    assert metres_apart(by_proj[on_grid], crs.grid_shift(points[on_grid])).max() < 1e-3
 
 
 def test_read_shift_grid_reads_band_order_units_and_sign_from_the_metadata():
-    grid = georef.read_shift_grid("SAD69")
+    grid = crs.read_shift_grid("SAD69")
     assert (grid.source_crs, grid.target_crs) == (SAD69, SIRGAS)
     assert grid.bounds == pytest.approx((-63.5, -34.1666667, -33.5, 4.5))
     assert grid.dlon.shape == grid.dlat.shape == (len(grid.lat), len(grid.lon))
@@ -130,22 +130,22 @@ def write_grid(path, grid, positive="west", unit="degree", point=True):
 def test_another_sign_unit_or_node_convention_is_read_as_proj_reads_it(tmp_path, positive,
                                                                         unit, point):
     path = tmp_path / "shift.tif"
-    write_grid(path, georef.read_shift_grid("SAD69"), positive, unit, point)
+    write_grid(path, crs.read_shift_grid("SAD69"), positive, unit, point)
     points = random_lonlat("SAD69", n=500, seed=1)
-    ours = georef.grid_shift(points, path)
+    ours = crs.grid_shift(points, path)
     theirs = np.column_stack(hgridshift(path).transform(points[:, 0], points[:, 1]))
     assert metres_apart(ours, theirs).max() < 1e-3
     # the same shifts as the shipped file's (float32 of degrees: a few micrometres)
-    assert metres_apart(ours, georef.grid_shift(points, "SAD69")).max() < 1e-3
+    assert metres_apart(ours, crs.grid_shift(points, "SAD69")).max() < 1e-3
 
 
 def test_a_file_that_is_not_a_shift_grid_is_refused(tmp_path):
     with pytest.raises(DataError, match="TYPE is None, not 'HORIZONTAL_OFFSET'"):
-        georef.read_shift_grid(data.path("nat1"))
+        crs.read_shift_grid(data.path("nat1"))
     with pytest.raises(DataError, match="no shift grid 'SAD70'"):
-        georef.read_shift_grid("SAD70")
+        crs.read_shift_grid("SAD70")
     with pytest.raises(TypeError, match="grid must be one of SAD69"):
-        georef.read_shift_grid(3.5)
+        crs.read_shift_grid(3.5)
 
 
 def test_points_outside_the_grid_are_refused_not_shifted_by_zero():
@@ -154,19 +154,19 @@ def test_points_outside_the_grid_are_refused_not_shifted_by_zero():
                                         r"br_ibge_SAD69_003.tif \(longitude -63.5 to -33.5, "
                                         r"latitude -34.1667 to 4.5; first: point 1 \(-67.8, "
                                         r"-9.97\)\)"):
-        georef.grid_shift([[-47.9, -15.8], [-67.8, -9.97]], "SAD69")
+        crs.grid_shift([[-47.9, -15.8], [-67.8, -9.97]], "SAD69")
     x, y = hgridshift(GRIDS / FILES["SAD69"]).transform(-67.8, -9.97)
     assert not np.isfinite([x, y]).all()
     # a point on the grid's last node is inside (PROJ's tolerance); the shift is the node's
-    grid = georef.read_shift_grid("SAD69")
-    corner = georef.grid_shift([[grid.lon[-1], grid.lat[-1]]], "SAD69")[0]
+    grid = crs.read_shift_grid("SAD69")
+    corner = crs.grid_shift([[grid.lon[-1], grid.lat[-1]]], "SAD69")[0]
     assert (corner[0] - grid.lon[-1]) * 3600 == pytest.approx(grid.dlon[-1, -1])
 
 
 # -- the transformation PROJ applies, named ----------------------------------------------------
 
 def test_transformations_lists_the_grid_first_then_the_parameters():
-    found = georef.transformations("EPSG:29191", "EPSG:31981")
+    found = crs.transformations("EPSG:29191", "EPSG:31981")
     assert [t.codes for t in found[:2]] == [("EPSG:5528",), ("EPSG:15485",)]
     grid, three = found[:2]
     assert grid.accuracy == 1.0 and three.accuracy == 5.0
@@ -176,18 +176,18 @@ def test_transformations_lists_the_grid_first_then_the_parameters():
     assert str(grid) == ("SAD69 to SIRGAS 2000 (2) (EPSG:5528; accuracy 1 m, grid "
                          "br_ibge_SAD69_003.tif)")
     # a grid rsgeo does not ship: listed, not available, and refused by name
-    corrego = georef.transformations("EPSG:4225", SIRGAS)
+    corrego = crs.transformations("EPSG:4225", SIRGAS)
     missing = [t for t in corrego if not t.available]
     assert [t.grids for t in missing] == [("br_ibge_CA7072_003.tif",)]
     with pytest.raises(CRSError, match=r"needs the grid br_ibge_CA7072_003.tif, which PROJ "
                                        r"does not find here"):
-        georef.transform_points([[-47.0, -15.0]], "EPSG:4225", SIRGAS,
+        crs.transform_points([[-47.0, -15.0]], "EPSG:4225", SIRGAS,
                                 transformation=missing[0])
 
 
 def test_datum_shift_names_the_grid_and_unpacks_as_three_arrays():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
-    shift = georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
+    shift = crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
     dx, dy, distance = shift
     assert len(shift) == 3 and shift[2] is distance and shift.distance is distance
     assert shift.transformation.codes == ("EPSG:5528",) and (shift.used == 0).all()
@@ -199,52 +199,52 @@ def test_datum_shift_names_the_grid_and_unpacks_as_three_arrays():
 
 def test_points_outside_the_grids_area_get_the_parameters_and_say_so():
     # Brasília (in EPSG:5528's area) and Rio Branco (outside it and outside the grid)
-    shift = georef.datum_shift([[-47.9, -15.8], [-67.8, -9.97], [-47.0, -16.0]], SAD69, SIRGAS)
+    shift = crs.datum_shift([[-47.9, -15.8], [-67.8, -9.97], [-47.0, -16.0]], SAD69, SIRGAS)
     assert [t.codes for t in shift.transformations] == [("EPSG:5528",), ("EPSG:15485",)]
     np.testing.assert_array_equal(shift.used, [0, 1, 0])
     assert "at 2 points" in repr(shift) and "at 1 points" in repr(shift)
-    three = georef.transform_points([[-67.8, -9.97]], SAD69, SIRGAS, transformation="EPSG:15485")
+    three = crs.transform_points([[-67.8, -9.97]], SAD69, SIRGAS, transformation="EPSG:15485")
     np.testing.assert_allclose([shift.dx[1], shift.dy[1]], three[0] - [-67.8, -9.97], atol=1e-12)
 
 
 def test_a_transformation_asked_by_name_is_applied_or_refused():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     for asked in ("EPSG:15485", 15485, ["epsg:15485"]):
-        shift = georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation=asked)
+        shift = crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation=asked)
         assert shift.transformation.codes == ("EPSG:15485",)
-    default = georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
+    default = crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
     gap = np.hypot(default.dx - shift.dx, default.dy - shift.dy)
     assert np.all((gap > 5) & (gap < 10))                     # issue 28: 7.8 m
     with pytest.raises(CRSError, match=r"PROJ knows no operation EPSG:1234 from EPSG:29191 "
                                        r"to EPSG:31981; it knows: EPSG:5528 SAD69 to SIRGAS "
                                        r"2000 \(2\); EPSG:15485"):
-        georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation="EPSG:1234")
+        crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation="EPSG:1234")
     with pytest.raises(CRSError, match="is not a registry code"):
-        georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation="the grid")
+        crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation="the grid")
     with pytest.raises(TypeError, match="transformation must be a code"):
-        georef.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation=1.5)
+        crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981", transformation=1.5)
     # the grid by name west of its area of use: refused, not answered by another operation
     with pytest.raises(CRSError, match=r"outside the area of use of SAD69 to SIRGAS 2000 \(2\) "
                                        r"\(EPSG:5528: longitude -60.58 to -34.74"):
-        georef.transform_points([[-62.0, -9.0]], SAD69, SIRGAS, transformation="EPSG:5528")
+        crs.transform_points([[-62.0, -9.0]], SAD69, SIRGAS, transformation="EPSG:5528")
 
 
 def test_the_sad69_96_parameters_are_epsg_15485_s_and_only_the_grids_tell_them_apart():
     # EPSG:5881 applies EPSG:15485's translations to SAD69(96), on the same ellipsoid
     points = gcps_lonlat()
-    classic = georef.transform_points(points, SAD69, SIRGAS, transformation="EPSG:15485")
-    readjusted = georef.transform_points(points, SAD69_96, SIRGAS, transformation="EPSG:5881")
+    classic = crs.transform_points(points, SAD69, SIRGAS, transformation="EPSG:15485")
+    readjusted = crs.transform_points(points, SAD69_96, SIRGAS, transformation="EPSG:5881")
     np.testing.assert_array_equal(classic, readjusted)
-    by_grids = [georef.transform_points(points, SAD69, SIRGAS),
-                georef.transform_points(points, SAD69_96, SIRGAS)]
+    by_grids = [crs.transform_points(points, SAD69, SIRGAS),
+                crs.transform_points(points, SAD69_96, SIRGAS)]
     assert metres_apart(*by_grids).min() > 0.5
 
 
 def test_the_realization_change_is_the_two_grids_chained():
     points = gcps_lonlat()
-    shift = georef.datum_shift(points, SAD69, SAD69_96)
+    shift = crs.datum_shift(points, SAD69, SAD69_96)
     assert shift.transformation.codes == ("EPSG:5528", "EPSG:5529")
-    chained = georef.grid_shift(georef.grid_shift(points, "SAD69"), "SAD69(96)", inverse=True)
+    chained = crs.grid_shift(crs.grid_shift(points, "SAD69"), "SAD69(96)", inverse=True)
     moved = points + np.column_stack([shift.dx, shift.dy])
     assert metres_apart(moved, chained).max() < 1e-3
 
@@ -258,19 +258,19 @@ def test_reproject_samples_where_transform_points_says():
     transform = affine.Affine(25.0, 0, 470000.0, 0, -25.0, 7430000.0)
     rows = np.arange(120, dtype=np.float64)[:, np.newaxis] + 0.5
     northings = np.tile(transform.f + rows * transform.e, (1, 160))
-    raster = data.Raster(northings, transform, georef.as_crs(29193), None, "", "northings")
+    raster = data.Raster(northings, transform, crs.as_crs(29193), None, "", "northings")
     rows, cols = np.mgrid[20:100:7, 20:140:7]
     for asked, code in [(None, "EPSG:5528"), ("EPSG:15485", "EPSG:15485")]:
-        out = georef.reproject(raster, "EPSG:31983", method="bilinear", nodata=None,
+        out = resample.reproject(raster, "EPSG:31983", method="bilinear", nodata=None,
                                transformation=asked)
         assert code in out.description
         centres = np.column_stack(out.transform @ (cols.ravel() + 0.5, rows.ravel() + 0.5))
-        source = georef.transform_points(centres, "EPSG:31983", "EPSG:29193",
+        source = crs.transform_points(centres, "EPSG:31983", "EPSG:29193",
                                          transformation=asked)
         np.testing.assert_allclose(out.array[rows.ravel(), cols.ravel()], source[:, 1],
                                    rtol=0, atol=1e-6)
         # the other transformation would have sampled metres away: the check can fail
-        other = georef.transform_points(centres, "EPSG:31983", "EPSG:29193",
+        other = crs.transform_points(centres, "EPSG:31983", "EPSG:29193",
                                         transformation="EPSG:5528" if asked else "EPSG:15485")
         assert np.abs(other[:, 1] - source[:, 1]).min() > 1
 
@@ -278,4 +278,4 @@ def test_reproject_samples_where_transform_points_says():
 def test_gcpset_to_crs_is_transform_points():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     np.testing.assert_array_equal(gcps.to_crs("EPSG:31981").map_xy,
-                                  georef.transform_points(gcps.map_xy, gcps.crs, "EPSG:31981"))
+                                  crs.transform_points(gcps.map_xy, gcps.crs, "EPSG:31981"))

@@ -5,7 +5,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rsgeo import data, distortion, tiepoints
+from rsgeo import data, distortion, registration, sensors
 
 
 def test_modis_edge_pixel_and_swath():
@@ -62,15 +62,15 @@ def test_skew_falls_with_latitude_and_vanishes_at_the_orbit_limit():
     (lambda: distortion.pixel_size(10.0, -5.0), "altitude_km must be"),
     (lambda: distortion.pixel_size(70.0, 705.0), "beyond the horizon"),
     (lambda: distortion.swath_width(np.nan, 705.0), "finite"),
-    (lambda: distortion.SystematicDistortion(scale=0), "scale must be"),
+    (lambda: sensors.SystematicDistortion(scale=0), "scale must be"),
     (lambda: distortion.earth_rotation_skew(0.0, pass_direction="north"),
      "pass_direction must be"),
     (lambda: distortion.attitude_displacement(0.1, 705.0, axis="yaw"), "axis must be"),
     (lambda: distortion.attitude_displacement(1.0, 705.0, scan_angle_deg=63.5),
      "beyond the horizon"),
     (lambda: distortion.scan_footprint(10.0, 705.0, detectors=0), "detectors must be"),
-    (lambda: distortion.SystematicDistortion(roll_deg=0.1), "need view_altitude_km"),
-    (lambda: distortion.SystematicDistortion().with_knowledge_errors(roll_deg=0.01),
+    (lambda: sensors.SystematicDistortion(roll_deg=0.1), "need view_altitude_km"),
+    (lambda: sensors.SystematicDistortion().with_knowledge_errors(roll_deg=0.01),
      "need view_altitude"),
 ])
 def test_non_physical_input_is_a_value_error(call, message):
@@ -80,14 +80,15 @@ def test_non_physical_input_is_a_value_error(call, message):
 
 def test_simulate_then_correct_a_real_scene():
     truth = data.load("cbers2b_hrc").array[::4, ::4][:600, :600]
-    model = distortion.SystematicDistortion(skew_per_line=0.08, scale=1.03, roll_px=6, pitch_px=-4,
+    model = sensors.SystematicDistortion(skew_per_line=0.08, scale=1.03, roll_px=6, pitch_px=-4,
                                             yaw_deg=2.0, yaw_rate_deg_per_line=0.004)
-    recorded = distortion.simulate(truth, model, method="cubic")
-    corrected = distortion.correct(recorded, model, method="cubic")
+    recorded = sensors.simulate(truth, model, method="cubic")
+    corrected = sensors.correct(recorded, model, method="cubic")
     inner = slice(100, 500)
-    _, before = tiepoints.measure_shifts(truth[inner, inner], recorded[inner, inner], step=50,
+    _, before = registration.measure_shifts(truth[inner, inner], recorded[inner, inner], step=50,
                                          window=64)
-    points, after = tiepoints.measure_shifts(truth[inner, inner], corrected[inner, inner], step=50,
+    points, after = registration.measure_shifts(truth[inner, inner], corrected[inner, inner],
+                                                step=50,
                                              window=64)
     assert len(points) >= 40
     assert np.hypot(*before.T).mean() > 5                 # the distortion is real
@@ -95,7 +96,7 @@ def test_simulate_then_correct_a_real_scene():
 
 
 def test_panoramic_model_inverts_exactly():
-    model = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
+    model = sensors.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
                                             yaw_rate_deg_per_line=0.01,
                                             shape=(800, 1000))
     rng = np.random.default_rng(0)
@@ -131,8 +132,8 @@ def test_simulator_applies_roll_in_scan_angle_space():
     # With view geometry the same roll moves a column at 55° about 4.9 times as far as at nadir
     # (the old simulator shifted every column by the same number of pixels).
     shape = (10, 2000)
-    plain = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0)
-    rolled = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
+    plain = sensors.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0)
+    rolled = sensors.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
                                              roll_px=1.0)
     cols = 1000 + np.radians([0.0, 55.0]) * 705.0
     points = np.column_stack([cols, np.full(2, 5.0)])
@@ -142,14 +143,14 @@ def test_simulator_applies_roll_in_scan_angle_space():
                                                  scan_angle_deg=[0.0, 55.0])
     np.testing.assert_allclose(moved, -expected, rtol=1e-9)
     assert moved[1] / moved[0] == pytest.approx(4.8, abs=0.1)
-    in_degrees = distortion.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
+    in_degrees = sensors.SystematicDistortion(view_altitude_km=705.0, nadir_pixel_km=1.0,
                                                  roll_deg=np.degrees(1 / 705.0))
     np.testing.assert_allclose(in_degrees.on_grid(shape).inverse()(points),
                                rolled.on_grid(shape).inverse()(points))
 
 
 def test_attitude_model_inverts_exactly():
-    model = distortion.SystematicDistortion(skew_per_line=0.05, scale=1.02, roll_px=3, pitch_px=-2,
+    model = sensors.SystematicDistortion(skew_per_line=0.05, scale=1.02, roll_px=3, pitch_px=-2,
                                             yaw_deg=1.0, yaw_rate_deg_per_line=0.002,
                                             view_altitude_km=705.0, nadir_pixel_km=1.0,
                                             roll_deg=0.3, pitch_deg=-0.2)
@@ -195,16 +196,16 @@ def test_modis_bowtie_scans_overlap_by_half_at_the_edge():
 def test_correcting_with_imperfect_attitude_leaves_the_expected_shift():
     # The ground station knows the roll only to 0.01°: from 778 km that is 136 m, 13.6 px of 10 m.
     truth = data.load("cbers2b_hrc").array[::4, ::4][:400, :400]
-    true_model = distortion.SystematicDistortion(view_altitude_km=778.0, nadir_pixel_km=0.01,
+    true_model = sensors.SystematicDistortion(view_altitude_km=778.0, nadir_pixel_km=0.01,
                                                  roll_deg=0.003, pitch_deg=-0.002, yaw_deg=1.0)
     known = true_model.with_knowledge_errors(roll_deg=0.01)
-    recorded = distortion.simulate(truth, true_model, method="cubic")
-    exact = distortion.correct(recorded, true_model, method="cubic")
-    systematic = distortion.correct(recorded, known, method="cubic")
+    recorded = sensors.simulate(truth, true_model, method="cubic")
+    exact = sensors.correct(recorded, true_model, method="cubic")
+    systematic = sensors.correct(recorded, known, method="cubic")
     inner = slice(80, 320)
-    _, exact_shift = tiepoints.measure_shifts(truth[inner, inner], exact[inner, inner], step=60,
+    _, exact_shift = registration.measure_shifts(truth[inner, inner], exact[inner, inner], step=60,
                                               window=64)
-    _, shifts = tiepoints.measure_shifts(truth[inner, inner], systematic[inner, inner], step=60,
+    _, shifts = registration.measure_shifts(truth[inner, inner], systematic[inner, inner], step=60,
                                          window=64)
     assert np.hypot(*exact_shift.T).max() < 0.5
     expected = 778.0 * np.tan(np.radians(0.01)) / 0.01
@@ -228,7 +229,7 @@ def test_frame_outline_moves_the_last_line_west(pass_direction, sign):
 def test_a_folding_yaw_rate_raises_instead_of_returning_a_wrong_point():
     # 5°/line turns the lines so fast that the grid folds over itself: (10, 200) on a 300 × 300
     # grid used to come back as a point that maps to (32.4, 59.1)
-    model = distortion.SystematicDistortion(yaw_rate_deg_per_line=5.0, shape=(300, 300))
+    model = sensors.SystematicDistortion(yaw_rate_deg_per_line=5.0, shape=(300, 300))
     with pytest.raises(ValueError, match="no single true position"):
         model.inverse()([[10.0, 200.0]])
     # near nadir (closer than 1 / rate = 11.5 px) the inverse is still unique and exact
@@ -236,16 +237,16 @@ def test_a_folding_yaw_rate_raises_instead_of_returning_a_wrong_point():
     np.testing.assert_allclose(model(model.inverse()(near)), near, atol=1e-9)
     image = np.arange(300 * 300, dtype=np.float64).reshape(300, 300)
     with pytest.warns(RuntimeWarning, match="no true position"):
-        recorded = distortion.simulate(image, model, nodata=-1.0)
+        recorded = sensors.simulate(image, model, nodata=-1.0)
     assert (recorded == -1.0).mean() > 0.5
 
 
 def test_the_protocol_needs_the_grid_and_a_matching_image():
-    model = distortion.SystematicDistortion(yaw_deg=2.0)
+    model = sensors.SystematicDistortion(yaw_deg=2.0)
     with pytest.raises(ValueError, match="on_grid"):
         model([[1.0, 2.0]])
     with pytest.raises(ValueError, match="set on a"):
-        distortion.correct(np.zeros((10, 12)), model.on_grid((12, 10)))
+        sensors.correct(np.zeros((10, 12)), model.on_grid((12, 10)))
     with pytest.raises(ValueError, match="two positive integers"):
         model.on_grid((0, 5))
 
@@ -258,7 +259,7 @@ def test_every_systematic_distortion_inverts_exactly(col, row, yaw, rate, skew, 
                                                      panoramic):
     geometry = ({"view_altitude_km": 705.0, "nadir_pixel_km": 1.0, "roll_deg": roll}
                 if panoramic else {})
-    model = distortion.SystematicDistortion(skew_per_line=skew, scale=scale, yaw_deg=yaw,
+    model = sensors.SystematicDistortion(skew_per_line=skew, scale=scale, yaw_deg=yaw,
                                             yaw_rate_deg_per_line=rate, shape=(400, 600),
                                             **geometry)
     point = np.array([[col, row]])

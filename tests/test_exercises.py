@@ -26,7 +26,7 @@ from rsgeo import (
     synthetic,
     transforms,
 )
-from rsgeo.exercises import ex01_distortions, ex04_resampling
+from rsgeo_course.exercises import ex01_distortions, ex04_resampling
 
 ROOT = Path(__file__).resolve().parent.parent
 R, RE, OMEGA, GM = 6371.0, 6378.137, 7.292115e-5, 398600.4418
@@ -260,18 +260,18 @@ def suboptimal():
 def bias_task():
     """Exercises 4c's settings: a delivered RPC with a bias, five GCPs, a colleague's shift and
     twelve check points' residuals (measured minus RPC)."""
-    from rsgeo import terrain
+    from rsgeo import sensors
 
     scene = synthetic.raw_scene(off_nadir_deg=5.0, simulate=False)
     vendor = scene.sensor.with_knowledge_errors(roll_deg=-0.00003, pitch_deg=0.0009,
                                                yaw_deg=-0.001)
-    rpc = terrain.fit_rpc_to_sensor(vendor, scene.crs, scene.bounds, scene.height_range)
+    rpc = sensors.fit_rpc_to_sensor(vendor, scene.crs, scene.bounds, scene.height_range)
     rows, cols = scene.sensor.shape
     layout = np.array([[0.15, 0.2], [0.85, 0.15], [0.2, 0.85], [0.8, 0.8], [0.45, 0.55]])
     gcps = scene.control_points(layout * (cols, rows), noise_px=0.3, seed=4)
     projected = np.column_stack(rpc.project(gcps.lon, gcps.lat, gcps.height))
     others = scene.control_points(5, noise_px=0.3, seed=11, margin=0.15)
-    colleague = np.array([terrain.refine_rpc(rpc, others.rpc_gcps).parameters[k]
+    colleague = np.array([sensors.refine_rpc(rpc, others.rpc_gcps).parameters[k]
                           for k in ("a0", "b0")])
     checks = scene.control_points(12, noise_px=0.3, seed=12)
     residuals = checks.image_xy - np.column_stack(rpc.project(checks.lon, checks.lat,
@@ -313,10 +313,10 @@ def nat1_corners():
 
 def grid_gap(kind="right", pixel=25.0):
     """Grid (EPSG:5528) vs three parameters (EPSG:15485) at nat1's corners, as students err."""
-    from rsgeo import georef
+    from rsgeo import crs
 
     corners = nat1_corners()
-    grid, three = (georef.transform_points(corners, "EPSG:29193", "EPSG:31983", transformation=t)
+    grid, three = (crs.transform_points(corners, "EPSG:29193", "EPSG:31983", transformation=t)
                    for t in ("EPSG:5528", "EPSG:15485"))
     dx, dy = (grid - three).T
     gap = np.hypot(dx, dy)
@@ -937,7 +937,7 @@ def english_words(text):
 
 @pytest.fixture
 def portuguese(monkeypatch):
-    from rsgeo import _i18n
+    from rsgeo import language as _i18n
 
     monkeypatch.setenv("RSGEO_LANG", "pt_BR")
     monkeypatch.setattr(_i18n, "_chosen", None)

@@ -1,4 +1,4 @@
-"""rsgeo.figure_language: the Portuguese book's figures and tables, their code left English.
+"""rsgeo_course.figure_language: the Portuguese book's figures and tables, their code left English.
 
 A figure with literal and f-string texts, a legend, a colour bar, text and annotation artists is
 Portuguese after :func:`translate_figure` under pt_BR (tick labels with a decimal comma, drawn)
@@ -18,14 +18,15 @@ matplotlib.use("Agg")
 
 from matplotlib.figure import Figure  # noqa: E402
 
-from rsgeo import _i18n, figure_language  # noqa: E402
-from rsgeo.figure_language import translate_figure, translate_table, translate_text  # noqa: E402
+from rsgeo import language as _i18n
+from rsgeo_course import figure_language  # noqa: E402
+from rsgeo_course.figure_language import translate_figure, translate_table, translate_text  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "locales"))
 import update  # noqa: E402  (locales/update.py: the extraction)
 
-FIGURES_PO = ROOT / "rsgeo" / "locale" / "pt_BR" / "LC_MESSAGES" / "rsgeo_figures.po"
+FIGURES_PO = ROOT / "rsgeo_course" / "locale" / "pt_BR" / "LC_MESSAGES" / "rsgeo_figures.po"
 
 
 @pytest.fixture

@@ -10,7 +10,7 @@ rasterio or PROJ, and never an unconfirmed answer. The references:
   float equal to nodata moves to the next float up, as GDAL does since 3.11; the reference is
   GDAL 3.10, which leaves it);
 * ``orthorectify``: GDAL's RPC transformer with a DEM (``gdalwarp -rpc -to RPC_DEM=…``), but for
-  rsgeo.terrain's one documented difference (a valid value equal to the nodata 0 is moved off
+  rsgeo.ortho's one documented difference (a valid value equal to the nodata 0 is moved off
   it, GDAL's AvoidNoData, which GDAL's ``reproject`` does not apply);
 * ``datum_shift``: PROJ through pyproj's own Transformer, with the grids rsgeo ships on its path
   (rasterio's GDAL searches one folder, its wheel's, so it has no grid and would use EPSG:15485);
@@ -58,7 +58,7 @@ from hypothesis import HealthCheck, Phase, event, example, given, settings
 from hypothesis import strategies as st
 
 import rsgeo
-from rsgeo import accuracy, gcp, georef, matching, radiometry, terrain, tiepoints, transforms
+from rsgeo import accuracy, crs, gcp, ortho, radiometry, registration, sensors, transforms
 from rsgeo.errors import RsgeoError
 from rsgeo.resample import interpolate, warp
 
@@ -921,7 +921,7 @@ def test_apply_gain_offset_refuses_or_is_exact(image, gain, offset, rounding):
 def meshes(draw, min_n=3, max_n=5):
     n = draw(st.integers(min_n, max_n))
     rng = np.random.default_rng(draw(st.integers(0, 2**16)))
-    return matching.Mesh(rng.uniform(0, 500, (n, 2)), rng.uniform(10, 500, n))
+    return registration.Mesh(rng.uniform(0, 500, (n, 2)), rng.uniform(10, 500, n))
 
 
 @FUZZ
@@ -946,19 +946,19 @@ def meshes(draw, min_n=3, max_n=5):
 def test_genetic_match_refuses_or_is_a_valid_solution_below_the_optimum(reference, adjustment,
                                                                         options):
     options = {"population_size": 20, "generations": 10, "seed": 0, **options}
-    result = call("genetic_match", matching.genetic_match, reference, adjustment, **options)
+    result = call("genetic_match", registration.genetic_match, reference, adjustment, **options)
     if result is REFUSED:
         return
-    assert isinstance(reference, matching.Mesh)
+    assert isinstance(reference, registration.Mesh)
     m, n = len(reference.areas), len(adjustment.areas)
     solution = np.asarray(result.solution)
     assert solution.shape == (n,) and solution.min() >= 0 and solution.max() <= m
     alpha, variant = options.get("alpha", 0.5), options.get("variant", "paper")
-    again = matching.fitness(solution, reference, adjustment, alpha, variant)
+    again = registration.fitness(solution, reference, adjustment, alpha, variant)
     assert math.isfinite(result.fitness)
     np.testing.assert_allclose(result.fitness, again, rtol=1e-12, atol=1e-12)
     if m <= 5:
-        optimum = matching.optimum_match(reference, adjustment, alpha, variant)
+        optimum = registration.optimum_match(reference, adjustment, alpha, variant)
         assert result.fitness <= optimum.fitness + 1e-12
     confirmed("genetic_match")
 
@@ -1000,7 +1000,7 @@ def test_correlation_tiepoints_refuse_or_find_the_known_shift(shift, scene, opti
     options = {"spacing": 20, "window": 24, **options}
     if options.get("kind") not in (None, "polynomial"):
         options.setdefault("order", None)
-    gcps = call("correlation_tiepoints", tiepoints.correlation_tiepoints, reference, moving,
+    gcps = call("correlation_tiepoints", registration.correlation_tiepoints, reference, moving,
                 **options)
     if gcps is REFUSED:
         return
@@ -1025,7 +1025,7 @@ def test_correlation_tiepoints_refuse_or_find_the_known_shift(shift, scene, opti
 # -- orthorectify against GDAL --------------------------------------------------------------------
 
 def _small_rpc(n):
-    rpc = terrain.simple_rpc_dict()
+    rpc = sensors.simple_rpc_dict()
     half, degrees = n / 2, 0.045 * (n / 2) / 500
     rpc.update(LINE_OFF=half, SAMP_OFF=half, LINE_SCALE=half, SAMP_SCALE=half,
                LAT_SCALE=degrees, LONG_SCALE=degrees)
@@ -1107,7 +1107,7 @@ def test_orthorectify_refuses_or_matches_gdal(case):
                                 "dst_crs", "rpc_kind", "shape"))
     n = image.shape[-1] if image.ndim >= 2 and image.shape[-1] > 0 else 20
     rpc_dict, degrees = _small_rpc(n)
-    rpc_model = terrain.RPCModel.from_dict(rpc_dict)
+    rpc_model = sensors.RPCModel.from_dict(rpc_dict)
     rpc = {"model": rpc_model, "dict": rpc_dict,
            "dict missing": {k: v for k, v in rpc_dict.items() if k != "LAT_OFF"},
            "strings": {k: (" ".join(map(str, v)) if isinstance(v, list) else str(v))
@@ -1133,7 +1133,7 @@ def test_orthorectify_refuses_or_matches_gdal(case):
     longest = max(shape) if isinstance(shape, tuple) and min(shape) > 0 else 12
     step = 2 * degrees / longest
     grid = affine.Affine(step, 0, -34.9 - degrees, 0, -step, -8.0 + degrees)
-    got = call("orthorectify", terrain.orthorectify, image, rpc, dem, given_dem_gt, grid,
+    got = call("orthorectify", ortho.orthorectify, image, rpc, dem, given_dem_gt, grid,
                rows_cols, method, nodata=nodata, dst_crs=dst_crs, dem_vertical="ellipsoidal")
     if got is REFUSED:
         return
@@ -1167,7 +1167,7 @@ def test_orthorectify_refuses_or_matches_gdal(case):
         # terrain's documented difference (OSGeo/gdal#11711): a valid value that comes out as
         # the nodata 0 is moved one step off it by rsgeo (GDAL's AvoidNoData, as its VRT warps
         # do) and left at 0 by GDAL's reproject. Allowed where the value without nodata is 0.
-        raw = np.asarray(terrain.orthorectify(image, rpc, dem, given_dem_gt, grid, rows_cols,
+        raw = np.asarray(ortho.orthorectify(image, rpc, dem, given_dem_gt, grid, rows_cols,
                                               method, nodata=None, dst_crs=dst_crs,
                                               dem_vertical="ellipsoidal"))
         moved = (~same & (expected == 0) & (raw == 0)
@@ -1224,7 +1224,7 @@ def test_datum_shift_refuses_or_matches_proj(crs_pair, where, n):
               "huge": np.full((n, 2), 1e7), "nan": np.full((n, 2), np.nan),
               "empty": np.empty((0, 2)), "list": [[500000.0, 7400000.0]] * n,
               "strings": [["500000", "7400000"]] * n, "shape3": np.ones((n, 3))}[where]
-    got = call("datum_shift", georef.datum_shift, points, src_crs, dst_crs)
+    got = call("datum_shift", crs.datum_shift, points, src_crs, dst_crs)
     if got is REFUSED:
         return
     assert where not in ("nan", "shape3"), f"datum_shift answered on {where} points"
@@ -1239,11 +1239,11 @@ def test_datum_shift_refuses_or_matches_proj(crs_pair, where, n):
         confirmed("datum_shift", "empty")
         return
     lon, lat = transform(src, "EPSG:4326", xy[:, 0].tolist(), xy[:, 1].tolist())
-    for crs in (src, dst):
-        west, south, east, north = _area_of_use(crs)
+    for each_crs in (src, dst):
+        west, south, east, north = _area_of_use(each_crs)
         assert all(west - 1e-9 <= x <= east + 1e-9 and south - 1e-9 <= y <= north + 1e-9
                    for x, y in zip(lon, lat)), (
-            f"datum_shift answered for {where} points outside the area of use of {crs} "
+            f"datum_shift answered for {where} points outside the area of use of {each_crs} "
             f"({west}, {south}, {east}, {north})")
     from pyproj import Transformer
 
@@ -1267,7 +1267,7 @@ def test_datum_shift_refuses_points_at_1e30(src_crs, dst_crs):
     # the property above draws |v| <= 1e7: PROJ's inverse Web Mercator, asked for longitude and
     # latitude of (1e30, 1e30) on rsgeo's area-of-use check, did not return (issue 26)
     with pytest.raises(RsgeoError):
-        georef.datum_shift(np.full((2, 2), 1e30), src_crs, dst_crs)
+        crs.datum_shift(np.full((2, 2), 1e30), src_crs, dst_crs)
 
 
 # -- read_points / write_points -------------------------------------------------------------------

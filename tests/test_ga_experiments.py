@@ -5,7 +5,7 @@ import importlib.util
 import numpy as np
 import pytest
 
-from rsgeo import matching
+from rsgeo import registration
 
 from notebook_runner import ROOT
 
@@ -25,7 +25,8 @@ def test_success_table_counts_optimum_and_truth():
     assert (table["worst s/run"] >= table["mean s/run"]).all()
     # a matcher that returns the zero solution reaches nothing
     nothing = ga_experiments.success_table(sizes=(5,), seeds=range(2), matchers={
-        "none": lambda ref, adj, alpha, seed: matching.MatchResult(np.zeros(len(adj), int), 0.0,
+        "none": lambda ref, adj, alpha, seed: registration.MatchResult(np.zeros(len(adj), int),
+                                                                       0.0,
                                                                    [], 0)})
     assert nothing.loc[(5, "none"), "optimum reached (%)"] == 0
     assert nothing.loc[(5, "none"), "exact matches (%)"] == 0

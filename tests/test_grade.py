@@ -29,7 +29,7 @@ import grade  # noqa: E402
 import judge  # noqa: E402
 import sandbox  # noqa: E402
 
-from rsgeo.exercises import engine  # noqa: E402
+from rsgeo_course.exercises import engine  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -182,7 +182,8 @@ def test_bad_arguments_are_refused(tmp_path):
 
 
 def test_the_mistakes_listed_are_the_hints_the_checks_give():
-    from rsgeo import distortion, exercises
+    from rsgeo import distortion
+    from rsgeo_course import exercises
 
     checks = [name for name in exercises.__all__ if name.startswith("check_")]
     for name in checks:

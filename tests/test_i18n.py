@@ -29,11 +29,13 @@ import i18n_book  # noqa: E402  (the book's extension: download translation, lan
 LANGUAGE = "pt_BR"
 CATALOGUES = ROOT / "locales" / LANGUAGE / "LC_MESSAGES"
 RSGEO_PO = ROOT / "rsgeo" / "locale" / LANGUAGE / "LC_MESSAGES" / "rsgeo.po"
+COURSE_PO = ROOT / "rsgeo_course" / "locale" / LANGUAGE / "LC_MESSAGES" / "rsgeo_course.po"
+MESSAGE_PO = {"rsgeo": RSGEO_PO, "rsgeo_course": COURSE_PO}
 ENGLISH_BUILD = ROOT / "_build" / "html"
 PORTUGUESE_BUILD = ROOT / "_build" / "pt_BR" / "_build" / "html"
 BOOK_PO = sorted(CATALOGUES.glob("*/*.po"))
 THEME_PO = CATALOGUES / "sphinx.po"          # Sphinx's and the themes' labels, kept by hand
-ALL_PO = [*BOOK_PO, THEME_PO, RSGEO_PO]
+ALL_PO = [*BOOK_PO, THEME_PO, RSGEO_PO, COURSE_PO]
 
 # English words that are no Portuguese words: a text holding one (outside code, maths and
 # links) has English left to translate. A catalogue entry may keep its English only without them
@@ -158,7 +160,7 @@ GLOSSARY_TERMS = [
 ]
 
 
-@pytest.mark.parametrize("po", [*BOOK_PO, RSGEO_PO], ids=relative)
+@pytest.mark.parametrize("po", [*BOOK_PO, RSGEO_PO, COURSE_PO], ids=relative)
 def test_glossary_terms_are_the_translations_terms(po):
     def text(message, translation):
         # a title quoted in both (a paper's, in italics) is not translated
@@ -234,35 +236,39 @@ def test_the_portuguese_config_is_the_english_one_with_the_language_set():
 
 # -- rsgeo in Portuguese -------------------------------------------------------------------------
 
-def test_rsgeo_catalogue_holds_every_message_of_the_code():
-    # _() / N_() anywhere in rsgeo: the exercise checks' hints are N_() in their declarations
-    found = set(update.rsgeo_messages())
-    held = {message.id for message in entries(RSGEO_PO)}
-    assert found == held, (f"rsgeo.po out of date (python locales/update.py, then translate): new "
-                           f"{sorted(found - held)[:3]}, gone {sorted(held - found)[:3]}")
+@pytest.mark.parametrize("package", sorted(MESSAGE_PO))
+def test_each_catalogue_holds_every_message_of_its_package(package):
+    # _() / N_() anywhere in the package: the exercise checks' hints are N_() in their
+    # declarations (the course's)
+    found = set(update.messages_of(package))
+    held = {message.id for message in entries(MESSAGE_PO[package])}
+    assert found == held, (f"{MESSAGE_PO[package].name} out of date (python locales/update.py, "
+                           f"then translate): new {sorted(found - held)[:3]}, gone "
+                           f"{sorted(held - found)[:3]}")
 
 
 def test_every_declared_hint_is_a_message_of_the_catalogue():
-    from rsgeo import exercises
+    from rsgeo_course import exercises
 
-    found = set(update.rsgeo_messages())
+    found = set(update.course_messages())
     hints = {hint for name in exercises.declarations()
              for _kind, hint in exercises.recognised_mistakes(name)}
     assert len(hints) > 100 and hints <= found, sorted(hints - found)[:3]
 
 
-def test_rsgeo_mo_is_the_compiled_po():
-    with open(RSGEO_PO.with_suffix(".mo"), "rb") as handle:
+@pytest.mark.parametrize("po", [RSGEO_PO, COURSE_PO], ids=relative)
+def test_each_mo_is_the_compiled_po(po):
+    with open(po.with_suffix(".mo"), "rb") as handle:
         compiled = {key: value for key, value in gettext.GNUTranslations(handle)._catalog.items()
                     if key}
-    source = {message.id: message.string for message in entries(RSGEO_PO)
+    source = {message.id: message.string for message in entries(po)
               if message.string and not message.fuzzy}
-    assert compiled == source, "rsgeo.mo is stale: python locales/update.py compiles it"
+    assert compiled == source, f"{po.with_suffix('.mo').name} is stale: python locales/update.py"
 
 
 @pytest.fixture
 def portuguese(monkeypatch):
-    from rsgeo import _i18n
+    from rsgeo import language as _i18n
 
     monkeypatch.setenv("RSGEO_LANG", "pt_BR")
     monkeypatch.setattr(_i18n, "_chosen", None)
@@ -270,7 +276,7 @@ def portuguese(monkeypatch):
 
 
 def test_verdicts_speak_the_chosen_language(portuguese, monkeypatch):
-    from rsgeo.exercises import Verdict
+    from rsgeo_course.exercises import Verdict
 
     wrong = Verdict(False, "`x` is too large.", "Square, average, root.")
     assert repr(wrong) == "Ainda não: `x` is too large.\nDica: Square, average, root."
@@ -281,12 +287,14 @@ def test_verdicts_speak_the_chosen_language(portuguese, monkeypatch):
     assert portuguese.set_language("pt-BR") == "pt_BR"          # an explicit choice wins
     assert repr(wrong).startswith("Ainda não: ")
     portuguese.set_language(None)
-    assert [portuguese.translate(label, "pt_BR") for label in portuguese.VERDICT_LABELS] == [
+    from rsgeo_course import _i18n as course
+
+    assert [course.translate(label, "pt_BR") for label in course.VERDICT_LABELS] == [
         "Correto", "Ainda não", "não tentado", "erro", "tempo esgotado"]
 
 
 def test_check_hints_and_messages_speak_the_chosen_language(portuguese, monkeypatch):
-    from rsgeo.exercises import ExerciseNotSolved, check_skew
+    from rsgeo_course.exercises import ExerciseNotSolved, check_skew
 
     metres = check_skew(12.6 * 1000, 0.0, 185.0, 705.0, 98.2)          # a known mistake's hint
     assert repr(metres) == ("Ainda não: `skew_km` está mais de 100 vezes maior do que deveria.\n"
@@ -304,7 +312,7 @@ def test_check_hints_and_messages_speak_the_chosen_language(portuguese, monkeypa
 def test_common_value_errors_speak_the_chosen_language(portuguese, monkeypatch):
     import numpy as np
 
-    from rsgeo._checks import as_image, as_points, as_shape
+    from rsgeo.validation import as_image, as_points, as_shape
 
     with pytest.raises(ValueError, match=r"gcps deve ser um array \(n, 2\) de pares"):
         as_points(np.zeros((3, 3)), "gcps")
@@ -342,7 +350,7 @@ def test_figure_labels_speak_the_chosen_language_and_pass_the_audit(portuguese):
 
 @pytest.mark.parametrize("setting", ["fr", "klingon", ""])
 def test_an_unknown_language_is_refused(setting, monkeypatch):
-    from rsgeo import _i18n
+    from rsgeo import language as _i18n
 
     monkeypatch.setattr(_i18n, "_chosen", None)
     if setting:
@@ -350,10 +358,10 @@ def test_an_unknown_language_is_refused(setting, monkeypatch):
             _i18n.set_language(setting)
         monkeypatch.setenv("RSGEO_LANG", setting)
         with pytest.raises(ValueError, match="RSGEO_LANG"):
-            _i18n.translate("Correct")
+            _i18n.translate("Not a raster")
     else:                                                   # empty: the default, English
         monkeypatch.setenv("RSGEO_LANG", setting)
-        assert _i18n.translate("Correct") == "Correct"
+        assert _i18n.translate("Not a raster") == "Not a raster"
     with pytest.raises(TypeError, match="language name"):        # a wrong type
         _i18n.set_language(3)
 

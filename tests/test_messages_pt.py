@@ -21,7 +21,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from rsgeo import _i18n, exercises
+from rsgeo import language as _i18n
+from rsgeo_course import exercises
 
 ROOT = Path(__file__).resolve().parent.parent
 

@@ -7,7 +7,7 @@ import functools
 import numpy as np
 import pytest
 
-from rsgeo import distortion, errors, heights, synthetic, terrain
+from rsgeo import dem, distortion, errors, heights, relief, sensors, synthetic
 
 pytestmark = pytest.mark.gdal          # PROJ (through rasterio) and the shipped geoid grid
 
@@ -80,7 +80,7 @@ def test_relief_moves_a_point_away_from_nadir_by_h_tan_z():
     _along, across_km = distortion.pixel_size(s.off_nadir_deg, 778.0, 0.030)
     moved_m = (col1 - col0) * 1000 * float(across_km)
     zenith = distortion.zenith_angle(s.off_nadir_deg, 778.0)
-    assert moved_m == pytest.approx(terrain.relief_displacement(300.0, zenith), rel=0.01)
+    assert moved_m == pytest.approx(relief.relief_displacement(300.0, zenith), rel=0.01)
     assert moved_m > 0 and abs(row1 - row0) < 1e-9         # across the track only
 
 
@@ -99,7 +99,7 @@ def test_a_roll_knowledge_error_moves_columns_by_the_angle_over_the_ifov():
 
 def test_an_rpc_fitted_to_the_sensor_reproduces_it():
     s = scene()
-    rpc = terrain.fit_rpc_to_sensor(s.sensor, s.crs, s.bounds, s.height_range)
+    rpc = sensors.fit_rpc_to_sensor(s.sensor, s.crs, s.bounds, s.height_range)
     points = s.control_points(200, seed=1)
     col, row = rpc.project(points.lon, points.lat, points.height)
     assert np.abs(col - points.true_image_xy[:, 0]).max() < 1e-3
@@ -113,7 +113,7 @@ def test_control_points_lie_on_the_ellipsoidal_dem_and_carry_the_noise_asked_for
     assert np.abs(col - exact.true_image_xy[:, 0]).max() < 1e-6
     assert np.abs(row - exact.true_image_xy[:, 1]).max() < 1e-6
     assert np.array_equal(exact.image_xy, exact.true_image_xy)
-    dem_h = terrain.dem_height(s.dem, s.dem_transform, exact.map_xy[:, 0], exact.map_xy[:, 1])
+    dem_h = dem.dem_height(s.dem, s.dem_transform, exact.map_xy[:, 0], exact.map_xy[:, 1])
     assert np.abs(dem_h - exact.height).max() < 1e-3           # on the terrain
     noisy = s.control_points(2000, noise_px=0.5, seed=3)
     assert np.std(noisy.image_xy - noisy.true_image_xy) == pytest.approx(0.5, rel=0.05)
@@ -148,7 +148,7 @@ def test_refusals():
     with pytest.raises(errors.RsgeoError, match="shape"):
         synthetic.raw_scene(shape=(0, 10), simulate=False)
     with pytest.raises(errors.ModelError, match="view geometry"):
-        synthetic.RawSensor(distortion.SystematicDistortion(shape=(10, 10)), (0.0, 0.0), 8.0,
+        synthetic.RawSensor(sensors.SystematicDistortion(shape=(10, 10)), (0.0, 0.0), 8.0,
                             100.0)
     with pytest.raises(TypeError):
         synthetic.RawSensor("not a model", (0.0, 0.0), 8.0, 100.0)

@@ -1,4 +1,4 @@
-"""rsgeo.terrain.refine_rpc: RPC bias compensation in image space (Grodecki & Dial 2003,
+"""rsgeo.sensors.refine_rpc: RPC bias compensation in image space (Grodecki & Dial 2003,
 Fraser & Hanley 2003), checked against a bias planted on purpose, GDAL's degree-1 GCP
 polynomial and GDAL's RPC transformer (through rasterio)."""
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from rsgeo import errors, synthetic
-from rsgeo.terrain import (
+from rsgeo.sensors import (
     RefinedRPC,
     RPCModel,
     fit_rpc,

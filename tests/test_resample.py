@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rsgeo import transforms
+from rsgeo._kernels import resampling
 from rsgeo.resample import METHODS, grid_positions, interpolate, keys_weights, warp
 
 from gdal_reference import affine_source, gcp_source, gdal_warp
@@ -339,8 +340,8 @@ def test_keys_weights_reproduce_quadratics_and_match_keys_closed_form():
 
 # -- gdalwarp's common cases: no nodata, downsampling ---------------------------
 
-from rsgeo._checks import as_scale  # noqa: E402
 from rsgeo.resample import grid_scale  # noqa: E402
+from rsgeo.validation import as_scale  # noqa: E402
 
 from gdal_reference import gdalwarp_reproject  # noqa: E402
 
@@ -602,7 +603,7 @@ def test_average_is_the_block_mean_on_whole_blocks():
 
 # -- the exercises' checks for the output grid --------------------------------------
 
-from rsgeo import exercises  # noqa: E402
+from rsgeo_course import exercises  # noqa: E402
 
 TILTED = (affine.Affine.translation(770596.79, 7370112.81) @ affine.Affine.rotation(-8)
           @ affine.Affine.scale(20.0, -25.0))
@@ -766,8 +767,8 @@ def test_gdalwarp_widens_its_kernels_per_chunk_on_a_rotated_footprint(method):
 
 # -- issue 26: 64-bit images, a source nodata, clear errors, big outputs ------
 
-from rsgeo._checks import as_affine, as_output_shape  # noqa: E402
 from rsgeo.errors import GridError, ImageError  # noqa: E402
+from rsgeo.validation import as_affine, as_output_shape  # noqa: E402
 
 # a rotated (7°), enlarged (10 m to 4.1 m) output grid, warped with GDAL's exact transformer
 _ROTATED = (affine.Affine.translation(500_003.0, 7_399_997.0) @ affine.Affine.rotation(7)
@@ -912,7 +913,7 @@ def test_float16_and_big_endian_are_converted_once_not_per_strip(dtype, monkeypa
     image = noise((20, 20), "float32" if np.dtype(dtype).kind == "f" else "uint16",
                   seed=3).astype(dtype)
     seen = []
-    original = resample._resample
+    original = resampling.resample_pixels
 
     def spy(bands, *args, **kwargs):
         seen.append(bands.dtype)

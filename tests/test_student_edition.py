@@ -141,7 +141,7 @@ def test_no_file_of_the_edition_holds_a_solution(edition):
     assert len(taught_solution_lines()) >= 50
     assert files_with_solutions(edition) == {}
     # rsgeo ships with it (what its first cell installs), and the instructors' tools do not
-    assert (edition / "rsgeo" / "exercises" / "__init__.py").exists()
+    assert (edition / "rsgeo_course" / "exercises" / "__init__.py").exists()
     assert (edition / "pyproject.toml").exists() and (edition / "requirements.txt").exists()
     assert sorted(path.name for path in (edition / "exercises").iterdir()) == sorted(
         path.name for path in (ROOT / "exercises").glob("*.ipynb"))

@@ -1,4 +1,4 @@
-"""rsgeo.terrain: relief displacement, RPCs and orthorectification, with GDAL as the oracle.
+"""rsgeo.relief, rsgeo.sensors (RPCs), rsgeo.dem and rsgeo.ortho, with GDAL as the oracle.
 
 GDAL through rasterio: ``RPCTransformer`` for the RPC equations, ``reproject(..., rpcs=...,
 RPC_DEM=...)`` (exact transformer, ``tolerance=0``; DEM bilinear; plain kernels, XSCALE =
@@ -15,20 +15,11 @@ import numpy as np
 import pytest
 import rasterio
 
-from rsgeo import exercises
-from rsgeo.terrain import (
-    PushbroomSensor,
-    RPCModel,
-    dem_height,
-    fit_rpc,
-    height_error_budget,
-    map_on_grid,
-    orthorectify,
-    positional_error,
-    relief_displacement,
-    relief_displacement_photo,
-    simple_rpc_dict,
-)
+from rsgeo.dem import dem_height
+from rsgeo.ortho import map_on_grid, orthorectify, positional_error
+from rsgeo.relief import height_error_budget, relief_displacement, relief_displacement_photo
+from rsgeo.sensors import PushbroomSensor, RPCModel, fit_rpc, simple_rpc_dict
+from rsgeo_course import exercises
 
 LON0, LAT0 = -34.9, -8.0
 KX, KY = 111320.0 * np.cos(np.radians(LAT0)), 110574.0     # metres per degree, locally
@@ -708,7 +699,7 @@ def test_orthorectify_egm96_is_n_at_each_point_as_gdal_applies_it(scene):
 # -- issue 28: occlusion behind buildings and canopy ----------------------------
 
 def test_occluded_is_what_a_line_of_sight_through_the_profile_finds():
-    from rsgeo.terrain import occluded
+    from rsgeo.relief import occluded
 
     rng = np.random.default_rng(11)
     d = np.cumsum(rng.uniform(0.5, 3.0, 300))
@@ -730,7 +721,7 @@ def test_occluded_is_what_a_line_of_sight_through_the_profile_finds():
 
 
 def test_occluded_ground_behind_a_building_is_h_tan_theta_long():
-    from rsgeo.terrain import occluded
+    from rsgeo.relief import occluded
 
     d = np.arange(0.0, 200.0, 0.1)
     h = np.where((d >= 50) & (d < 70), 25.0, 0.0)                # a 25 m building, 20 m deep

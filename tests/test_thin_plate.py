@@ -1,4 +1,5 @@
-"""rsgeo.thin_plate: GDAL's thin-plate spline, solved and evaluated as GDAL does, bit for bit.
+"""rsgeo._kernels.thin_plate: GDAL's thin-plate spline, solved and evaluated as GDAL does, bit
+for bit.
 
 GDAL (3.10, through rasterio) is the reference for the values, SciPy's RBFInterpolator an
 independent check of the maths, and gdalwarp through a VRT with GDAL's TPS transformer the
@@ -11,7 +12,8 @@ import pytest
 from numba import njit
 from scipy.interpolate import RBFInterpolator
 
-from rsgeo import data, thin_plate, transforms
+from rsgeo import data, transforms
+from rsgeo._kernels import thin_plate
 from rsgeo.errors import GCPError
 from rsgeo.resample import warp
 

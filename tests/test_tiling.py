@@ -1,8 +1,8 @@
-"""rsgeo.tiling: a warp made tile by tile equals one warp, pixel for pixel (no seams).
+"""rsgeo.resample: a warp made tile by tile equals one warp, pixel for pixel (no seams).
 
 The reference is one rsgeo.resample.warp call over the whole grid (itself checked against GDAL in
 test_resample.py and test_transformer.py). The output grids here are north-up with pixel sizes
-and origins that add up exactly in binary (see rsgeo.tiling's notes); the mappings carry the
+and origins that add up exactly in binary (see rsgeo.resample's notes); the mappings carry the
 rotations and curvature.
 """
 
@@ -12,10 +12,11 @@ import pytest
 import rasterio
 from test_resample import noise, noise_and_curved_gcps
 
-from rsgeo import tiling, transforms
+from rsgeo import resample, transforms
 from rsgeo.errors import GridError, ImageError, RsgeoError
+from rsgeo.ortho import orthorectify
 from rsgeo.resample import WARP_METHODS, grid_scale, warp
-from rsgeo.terrain import RPCModel, orthorectify, simple_rpc_dict
+from rsgeo.sensors import RPCModel, simple_rpc_dict
 
 # a 320 x 320 source of 10 m pixels (noise_and_curved_gcps' image); its GCPs map it to
 # x 600 000 .. 603 300, y 7 296 800 .. 7 300 100 (with the curvature)
@@ -54,15 +55,15 @@ def one_shot(image, mapping, shape, transform, method, kind, **options):
     except GridError:
         if kind == "tps":
             pytest.skip("warp with a TPSModel lands nowhere: TPS is not wired into the "
-                        "kernels yet (rsgeo.transformer.to_source)")
+                        "kernels yet (rsgeo._kernels.transformer.to_source)")
         raise
 
 
 def window_kinds(mapping, shape, transform, tile_shape, method, scale):
     """How many tiles read nothing, a window cut by the source's edges, an inner window."""
     kinds = {"none": 0, "edge": 0, "inner": 0}
-    for tile in tiling.tiles(shape, transform, tile_shape):
-        window = tiling.source_window(mapping, tile.shape, tile.transform, SOURCE_SHAPE,
+    for tile in resample.tiles(shape, transform, tile_shape):
+        window = resample.source_window(mapping, tile.shape, tile.transform, SOURCE_SHAPE,
                                       method, scale)
         if window is None:
             kinds["none"] += 1
@@ -80,7 +81,7 @@ def window_kinds(mapping, shape, transform, tile_shape, method, scale):
 def test_tiles_equal_one_warp(kind, method):
     image, mapping = mapping_of(kind)
     whole = one_shot(image, mapping, GRID_SHAPE, GRID, method, kind)
-    tiled = tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, method=method)
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, method=method)
     assert tiled.dtype == whole.dtype
     assert np.count_nonzero(tiled != whole) == 0
     # the grid has tiles of every kind: all nodata, cut by the source's edges, inside
@@ -95,7 +96,7 @@ def test_downsampled_tiles_equal_one_warp(kind, method):
     scale = grid_scale(mapping, COARSE_SHAPE, COARSE_GRID, SOURCE_SHAPE)
     assert max(scale) < 0.95            # bilinear and cubic are widened over 1/scale pixels
     whole = one_shot(image, mapping, COARSE_SHAPE, COARSE_GRID, method, kind)
-    tiled = tiling.warp_tiled(image, mapping, COARSE_SHAPE, COARSE_GRID, (40, 48),
+    tiled = resample.warp_tiled(image, mapping, COARSE_SHAPE, COARSE_GRID, (40, 48),
                               method=method)
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -106,7 +107,7 @@ def test_float_bands_and_no_destination_nodata(method):
     _, mapping = mapping_of("polynomial 2")
     image = np.stack([noise(SOURCE_SHAPE, "float32", seed) for seed in (1, 2)])
     whole = warp(image, mapping, GRID_SHAPE, GRID, method=method, nodata=None)
-    tiled = tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, (50, 70), method=method,
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, (50, 70), method=method,
                               nodata=None)
     assert tiled.shape == (2,) + GRID_SHAPE
     assert np.count_nonzero(tiled != whole) == 0
@@ -117,7 +118,7 @@ def test_source_nodata_is_respected_as_in_one_warp():
     image = noise(SOURCE_SHAPE, "uint8", 4)
     image[100:180, 90:200] = 7
     whole = warp(image, mapping, GRID_SHAPE, GRID, method="bilinear", src_nodata=7)
-    tiled = tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, method="bilinear",
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, method="bilinear",
                               src_nodata=7)
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -130,7 +131,7 @@ def test_approximated_tiles_as_wide_as_the_grid_equal_one_approximated_warp():
     whole = warp(image, model, GRID_SHAPE, GRID, method="bilinear", error_threshold=0.125)
     exact = warp(image, model, GRID_SHAPE, GRID, method="bilinear")
     assert np.count_nonzero(whole != exact) > 0          # the approximation did something
-    tiled = tiling.warp_tiled(image, model, GRID_SHAPE, GRID, (64, GRID_SHAPE[1]),
+    tiled = resample.warp_tiled(image, model, GRID_SHAPE, GRID, (64, GRID_SHAPE[1]),
                               method="bilinear", error_threshold=0.125)
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -142,7 +143,7 @@ def test_tiles_of_a_grid_that_does_not_add_up_in_binary():
     image = noise(SOURCE_SHAPE, "float32", 6)
     grid = affine.Affine(7.123456789, 0.3, 599_300.37, 0.2, -7.123456789, 7_300_140.91)
     whole = warp(image, mapping, GRID_SHAPE, grid, method="bilinear")
-    tiled = tiling.warp_tiled(image, mapping, GRID_SHAPE, grid, TILE, method="bilinear")
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, grid, TILE, method="bilinear")
     assert np.count_nonzero(tiled != whole) == 0
 
 
@@ -151,7 +152,7 @@ def test_tiles_of_a_grid_that_does_not_add_up_in_binary():
 
 def test_tiles_cover_the_grid_once_with_the_grid_s_geotransform():
     cover = np.zeros(GRID_SHAPE, dtype=int)
-    for tile in tiling.tiles(GRID_SHAPE, GRID, TILE):
+    for tile in resample.tiles(GRID_SHAPE, GRID, TILE):
         rows, cols = tile.shape
         cover[tile.row:tile.row + rows, tile.col:tile.col + cols] += 1
         # the tile's pixel (0, 0) corner is the grid's (tile.col, tile.row) corner
@@ -168,22 +169,22 @@ def test_source_window_of_a_shift_is_its_box_widened_by_the_kernel_s_reach():
     expected = {"nearest": (49, 99, 12, 22), "bilinear": (48, 98, 14, 24),
                 "cubic": (47, 97, 16, 26), "average": (48, 98, 15, 25)}
     for method, window in expected.items():
-        got = tiling.source_window(shift, (10, 20), identity, (300, 400), method)
+        got = resample.source_window(shift, (10, 20), identity, (300, 400), method)
         assert tuple(got) == window, method
     # cut at the source's edges, never inside them
-    assert tuple(tiling.source_window(affine.Affine.translation(-5.0, 295.0), (10, 20),
+    assert tuple(resample.source_window(affine.Affine.translation(-5.0, 295.0), (10, 20),
                                       identity, (300, 400), "cubic")) == (292, 0, 8, 18)
     # downsampling by 4: cubic reaches ceil(2 / 0.25) + 2 = 10 pixels
-    assert tuple(tiling.source_window(shift, (10, 20), identity, (300, 400), "cubic",
+    assert tuple(resample.source_window(shift, (10, 20), identity, (300, 400), "cubic",
                                       scale=0.25)) == (40, 90, 30, 40)
 
 
 def test_a_tile_outside_the_source_reads_nothing():
     shift = affine.Affine.translation(100.0, 50.0)
     beyond = affine.Affine.translation(300.5, 0)        # cols 400.5 .. : right of the image
-    assert tiling.source_window(shift, (10, 20), beyond, (300, 400), "cubic") is None
+    assert resample.source_window(shift, (10, 20), beyond, (300, 400), "cubic") is None
     # within the kernel's reach of the image but no centre inside: still nothing to read
-    assert tiling.source_window(shift, (10, 20), affine.Affine.translation(-120.0, 0),
+    assert resample.source_window(shift, (10, 20), affine.Affine.translation(-120.0, 0),
                                 (300, 400), "cubic") is None
 
 
@@ -224,7 +225,7 @@ def test_a_file_is_read_window_by_window_and_written_tile_by_tile(tmp_path):
             height=GRID_SHAPE[0], count=2, dtype="uint8", transform=GRID, tiled=True,
             blockxsize=128, blockysize=128) as out:
         recorder = ReadRecorder(dataset)
-        returned = tiling.warp_tiled(recorder, mapping, GRID_SHAPE, GRID, TILE,
+        returned = resample.warp_tiled(recorder, mapping, GRID_SHAPE, GRID, TILE,
                                      method="cubic", out=out)
         assert returned is out
     with rasterio.open(tmp_path / "out.tif") as written:
@@ -237,7 +238,7 @@ def test_a_file_is_read_window_by_window_and_written_tile_by_tile(tmp_path):
 def test_a_path_source_gives_a_2d_array_for_one_band(tmp_path):
     image, mapping = mapping_of("affine")
     source = write_raster(tmp_path / "source.tif", image)
-    tiled = tiling.warp_tiled(source, mapping, GRID_SHAPE, GRID, TILE, method="bilinear")
+    tiled = resample.warp_tiled(source, mapping, GRID_SHAPE, GRID, TILE, method="bilinear")
     whole = warp(image, mapping, GRID_SHAPE, GRID, method="bilinear")
     assert tiled.shape == GRID_SHAPE
     assert np.count_nonzero(tiled != whole) == 0
@@ -246,7 +247,7 @@ def test_a_path_source_gives_a_2d_array_for_one_band(tmp_path):
 def test_into_a_given_array():
     image, mapping = mapping_of("affine")
     out = np.full(GRID_SHAPE, 9, dtype=np.uint8)
-    returned = tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, out=out)
+    returned = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, out=out)
     assert returned is out
     assert np.count_nonzero(out != warp(image, mapping, GRID_SHAPE, GRID)) == 0
 
@@ -260,7 +261,7 @@ def test_dask_with_one_and_two_workers_equals_one_warp(tmp_path, method, workers
     dask = pytest.importorskip("dask")
     image, mapping = mapping_of("polynomial 2")
     source = write_raster(tmp_path / "source.tif", image)
-    array = tiling.warp_dask(source, mapping, GRID_SHAPE, GRID, TILE, method=method)
+    array = resample.warp_dask(source, mapping, GRID_SHAPE, GRID, TILE, method=method)
     assert array.chunks[0][0] == TILE[0] and array.chunks[1][0] == TILE[1]
     with dask.config.set(scheduler="threads", num_workers=workers):
         tiled = array.compute()
@@ -274,7 +275,7 @@ def test_dask_processes_equal_one_warp(tmp_path):
     image, mapping = mapping_of("affine")
     image = np.stack([image, 255 - image])
     source = write_raster(tmp_path / "source.tif", image)
-    array = tiling.warp_dask(source, mapping, GRID_SHAPE, GRID, (300, 330), method="bilinear")
+    array = resample.warp_dask(source, mapping, GRID_SHAPE, GRID, (300, 330), method="bilinear")
     with dask.config.set(scheduler="processes", num_workers=2):
         tiled = array.compute()
     whole = warp(image, mapping, GRID_SHAPE, GRID, method="bilinear")
@@ -296,7 +297,7 @@ def test_tiles_of_orthorectify_equal_one_orthorectify():
     whole = orthorectify(image, rpc, dem, dem_transform, grid, shape, "cubic",
                          dem_vertical="ellipsoidal")
     tiled = np.empty_like(whole)
-    for tile in tiling.tiles(shape, grid, (16, 25)):
+    for tile in resample.tiles(shape, grid, (16, 25)):
         rows, cols = tile.shape
         tiled[tile.row:tile.row + rows, tile.col:tile.col + cols] = orthorectify(
             image, rpc, dem, dem_transform, tile.transform, tile.shape, "cubic",
@@ -311,51 +312,51 @@ def test_tiles_of_orthorectify_equal_one_orthorectify():
 def test_a_tile_shape_must_be_two_positive_integers(tile_shape):
     image, mapping = mapping_of("affine")
     with pytest.raises(GridError, match="tile_shape"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape)
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape)
     with pytest.raises(GridError, match="tile_shape"):
-        tiling.tiles(GRID_SHAPE, GRID, tile_shape)
+        resample.tiles(GRID_SHAPE, GRID, tile_shape)
 
 
 def test_out_must_match_the_result():
     image, mapping = mapping_of("affine")
     with pytest.raises(GridError, match="out has shape"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=np.empty((10, 10), np.uint8))
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=np.empty((10, 10), np.uint8))
     with pytest.raises(ImageError, match="dtype"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=np.empty(GRID_SHAPE))
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=np.empty(GRID_SHAPE))
     with pytest.raises(TypeError, match="out must be"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=[[0]])
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=[[0]])
 
 
 def test_out_must_be_a_raster_open_for_writing(tmp_path):
     image, mapping = mapping_of("affine")
     path = write_raster(tmp_path / "out.tif", np.zeros(GRID_SHAPE, np.uint8))
     with rasterio.open(path) as readonly, pytest.raises(ImageError, match="mode"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=readonly)
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, out=readonly)
     with rasterio.open(path, "r+") as wrong, pytest.raises(GridError, match="band"):
-        tiling.warp_tiled(image, mapping, (100, 100), GRID, out=wrong)
+        resample.warp_tiled(image, mapping, (100, 100), GRID, out=wrong)
 
 
 def test_a_grid_that_lands_nowhere_is_refused(tmp_path):
     image, mapping = mapping_of("affine")
     # the raster's own geotransform (image -> map) instead of its inverse
     with pytest.raises(GridError, match="no output cell lands"):
-        tiling.warp_tiled(image, ROTATED_SOURCE, GRID_SHAPE, GRID, TILE)
+        resample.warp_tiled(image, ROTATED_SOURCE, GRID_SHAPE, GRID, TILE)
     source = write_raster(tmp_path / "source.tif", image)
     with pytest.raises(GridError, match="no output cell lands"):
-        tiling.warp_dask(source, ROTATED_SOURCE, GRID_SHAPE, GRID, TILE)
+        resample.warp_dask(source, ROTATED_SOURCE, GRID_SHAPE, GRID, TILE)
 
 
 def test_other_arguments_are_checked_before_any_tile():
     image, mapping = mapping_of("affine")
     with pytest.raises(RsgeoError, match="method"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, method="lanczos")
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, method="lanczos")
     with pytest.raises(ImageError, match="nodata"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, GRID, nodata=300)
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, nodata=300)
     with pytest.raises(TypeError, match="mapping"):
-        tiling.warp_tiled(image, "north up", GRID_SHAPE, GRID)
+        resample.warp_tiled(image, "north up", GRID_SHAPE, GRID)
     with pytest.raises(TypeError, match="affine.Affine"):
-        tiling.warp_tiled(image, mapping, GRID_SHAPE, tuple(GRID.to_gdal()))
+        resample.warp_tiled(image, mapping, GRID_SHAPE, tuple(GRID.to_gdal()))
     with pytest.raises(TypeError, match="source_path"):
-        tiling.warp_dask(image, mapping, GRID_SHAPE, GRID)
+        resample.warp_dask(image, mapping, GRID_SHAPE, GRID)
     with pytest.raises(RsgeoError, match="error_threshold"):
-        tiling.source_window(mapping, TILE, GRID, SOURCE_SHAPE, error_threshold=-1)
+        resample.source_window(mapping, TILE, GRID, SOURCE_SHAPE, error_threshold=-1)

@@ -1,4 +1,5 @@
-"""rsgeo.transformer: models evaluated inside the warp kernels, exactly and as GDAL approximates.
+"""rsgeo._kernels.transformer: models evaluated inside the warp kernels, exactly and as GDAL
+approximates.
 
 The references: GDAL's exact GCP transformer and its approximate transformer
 (``GDALApproxTransform``, gdalwarp's default ``-et 0.125``) through a VRT
@@ -11,7 +12,8 @@ import pytest
 from test_resample import SOURCE_TRANSFORM, noise, noise_and_curved_gcps
 from test_thin_plate import warp_case
 
-from rsgeo import transformer, transforms
+from rsgeo import transforms
+from rsgeo._kernels import transformer
 from rsgeo.errors import RsgeoError
 from rsgeo.resample import METHODS, grid_positions, warp
 

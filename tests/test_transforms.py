@@ -77,7 +77,7 @@ def test_tps_warp_matches_gdalwarp_tps_bit_for_bit():
                        "</TPSTransformer></SrcTPSTransformer>"))
     # gdalwarp fits the spline image -> map and inverts it at every output cell, starting from
     # the spline map -> image (GDALTPSTransform, GDALGenericInverse2D); rsgeo's inverse() takes
-    # the same steps with the same spline (rsgeo.thin_plate), so every pixel is GDAL's
+    # the same steps with the same spline (rsgeo._kernels.thin_plate), so every pixel is GDAL's
     model = transforms.fit_transform(image_xy, map_xy, "tps").inverse()
     for method in ("nearest", "bilinear", "cubic"):
         expected = gdal_warp(image, source, dst_transform, shape, method, 0)
@@ -276,7 +276,7 @@ def helmert_task():
 
 
 def test_check_helmert_recognises_the_answer_and_the_mistakes():
-    from rsgeo.exercises import ExerciseNotSolved, check_helmert
+    from rsgeo_course.exercises import ExerciseNotSolved, check_helmert
 
     src, dst = helmert_task()
     m = transforms.fit_transform(src, dst, "helmert").matrix
@@ -296,7 +296,7 @@ def test_check_helmert_recognises_the_answer_and_the_mistakes():
 
 
 def test_check_projective_matrix_recognises_the_answer_and_the_mistakes():
-    from rsgeo.exercises import check_projective_matrix
+    from rsgeo_course.exercises import check_projective_matrix
 
     ground = np.array([[0.0, 0.0], [105.0, 0.0], [105.0, 68.0], [0.0, 68.0]])
     photo = np.array([[112.0, 590.0], [905.0, 610.0], [760.0, 210.0], [250.0, 200.0]])
@@ -315,7 +315,7 @@ def test_check_projective_matrix_recognises_the_answer_and_the_mistakes():
 
 def test_check_model_choice_judges_on_check_points():
     from rsgeo import synthetic
-    from rsgeo.exercises import check_model_choice
+    from rsgeo_course.exercises import check_model_choice
 
     gcps = synthetic.distorted_pair(seed=2).gcps
     is_check = np.arange(len(gcps)) % 3 == 0

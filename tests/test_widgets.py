@@ -15,9 +15,19 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
-from rsgeo import accuracy, data, distortion, matching, radiometry, synthetic, transforms, widgets  # noqa: E402
-from rsgeo.alt_text import describe_figure  # noqa: E402
+from rsgeo import (  # noqa: E402
+    accuracy,
+    data,
+    distortion,
+    radiometry,
+    registration,
+    sensors,
+    synthetic,
+    transforms,
+    widgets,
+)
 from rsgeo.plot import draw_grid, draw_mesh, draw_stretch_frame, fix_layout, grid_path  # noqa: E402
+from rsgeo_course.alt_text import describe_figure  # noqa: E402
 
 from figure_audit import figure_problems  # noqa: E402
 
@@ -85,10 +95,10 @@ def test_distortion_explorer_moves_its_grid_and_markers():
         assert left.lines[1] is grid
         if description != "scan angle °":
             assert not np.allclose(np.nan_to_num(grid.get_xydata()), np.nan_to_num(before))
-    model = distortion.SystematicDistortion(
+    model = sensors.SystematicDistortion(
         skew_per_line=distortion.earth_rotation_skew(50.0) / 185.0, roll_px=10.0, pitch_px=-5.0,
         yaw_deg=4.0, yaw_rate_deg_per_line=0.01)
-    expected = np.column_stack(grid_path(distortion.distorted_grid(model, (300, 300), 50)))
+    expected = np.column_stack(grid_path(sensors.distorted_grid(model, (300, 300), 50)))
     np.testing.assert_allclose(grid.get_xydata(), expected)
     assert f"last line {distortion.earth_rotation_skew(50.0):.1f} km west" in left.get_title()
     along, across = distortion.pixel_size(45.0, 705.0)
@@ -152,7 +162,8 @@ def test_ga_evolution_moves_through_the_kept_run():
     curves = list(right.lines)
     changes_in_place(box, named["generation"], 12)
     assert list(right.lines) == curves
-    run = matching.genetic_match(reference, adjustment, seed=0, population_size=60, generations=20,
+    run = registration.genetic_match(reference, adjustment, seed=0, population_size=60,
+                                     generations=20,
                                  elite_fraction=0.05, mutation_rate=0.04, selection="tournament",
                                  tournament_size=3)
     solution = run.history[12]["best_solution"]
@@ -162,7 +173,7 @@ def test_ga_evolution_moves_through_the_kept_run():
     for description, value in (("population", 30), ("selection", "roulette"), ("mutation", 0.1),
                                ("elitism", 0.2)):
         changes_in_place(box, named[description], value)
-    rerun = matching.genetic_match(reference, adjustment, seed=0, population_size=30,
+    rerun = registration.genetic_match(reference, adjustment, seed=0, population_size=30,
                                    generations=20,
                                    elite_fraction=0.2, mutation_rate=0.1, selection="roulette",
                                    tournament_size=3)
@@ -183,7 +194,7 @@ def test_stretch_frame_and_evolution_frame_update_their_artists():
         draw_stretch_frame(axes[:2], pair.x_image, pair.y_image, 1.2, 5.0, 0.5)
 
     reference, adjustment, truth = synthetic.synthetic_meshes(5, seed=1)
-    run = matching.genetic_match(reference, adjustment, seed=0, generations=10)
+    run = registration.genetic_match(reference, adjustment, seed=0, generations=10)
     evolution = widgets.draw_evolution_frame(reference, adjustment, truth, run.history[:1],
                                              generations=10)
     left, right = evolution.axes
@@ -195,7 +206,7 @@ def test_stretch_frame_and_evolution_frame_update_their_artists():
 
 
 def test_grid_and_mesh_are_single_artists():
-    lines = distortion.distorted_grid(distortion.SystematicDistortion(roll_px=3), (100, 100), 50)
+    lines = sensors.distorted_grid(sensors.SystematicDistortion(roll_px=3), (100, 100), 50)
     figure, ax = plt.subplots()
     line = draw_grid(ax, lines)
     assert list(ax.lines) == [line]
@@ -251,7 +262,7 @@ def test_every_frame_says_what_it_shows_and_controls_are_plain_text():
 
 
 def test_widget_controls_and_frames_speak_portuguese(monkeypatch):
-    from rsgeo import _i18n
+    from rsgeo import language as _i18n
 
     monkeypatch.setattr(_i18n, "_chosen", "pt_BR")
     box = widgets.distortion_explorer()

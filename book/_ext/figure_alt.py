@@ -4,7 +4,7 @@ cannot see it.
 myst-nb writes each image a notebook's cell outputs to a file named by its hash
 (``_build/jupyter_execute/<sha256>.png``) and gives its image node no ``alt``, so the page read
 the file's path aloud. The build's kernels write a description of every figure they render into
-its PNG (a ``Description`` text chunk, :func:`rsgeo.alt_text.describe_figure`, put there by
+its PNG (a ``Description`` text chunk, :func:`rsgeo_course.alt_text.describe_figure`, put there by
 figure_audit.py); here it becomes the image's ``alt``. An alt the author gave (a cell's image
 metadata) is kept. An image with neither is a warning naming its page, which fails the build
 (``-W``): a figure rendered outside the audited kernel, or a cached execution from before the

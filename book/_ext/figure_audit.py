@@ -136,9 +136,10 @@ def audit_rendered_figures(to_stderr=False):
     standard error as a line starting with ``FIGURE_PROBLEM_PREFIX``. The book's build turns
     this on in its kernels (:data:`KERNEL_ARGUMENTS`), where any standard-error output fails
     the build. Every PNG gets a ``Description`` text chunk,
-    :func:`rsgeo.alt_text.describe_figure` of its figure, which the book's extension
+    :func:`rsgeo_course.alt_text.describe_figure` of its figure, which the book's extension
     figure_alt.py makes the image's alternative text. It patches matplotlib's
-    ``FigureCanvasBase.print_figure`` for the running process only.
+    ``FigureCanvasBase.print_figure`` for the running process only, and installs the same
+    description for the figures rsgeo renders itself (:func:`rsgeo.plot.set_figure_describer`).
 
     Parameters
     ----------
@@ -155,6 +156,9 @@ def audit_rendered_figures(to_stderr=False):
 
     if getattr(FigureCanvasBase.print_figure, "_figure_audit", False):
         return
+    # the course's describer, installed in rsgeo.plot as the course is imported: the widgets'
+    # frames and the animation players rsgeo draws say what they show as the PNGs do
+    import rsgeo_course  # noqa: F401
     original = FigureCanvasBase.print_figure
 
     def print_figure(self, *args, **kwargs):
@@ -189,10 +193,10 @@ def _saved_format(args, kwargs):
 
 
 def _description(figure):
-    """(:func:`rsgeo.alt_text.describe_figure` of ``figure``, None), or (None, the problem)
+    """(:func:`rsgeo_course.alt_text.describe_figure` of ``figure``, None), or (None, the problem)
     when rsgeo cannot describe it: the figure is still saved, without a description."""
     try:
-        from rsgeo.alt_text import describe_figure
+        from rsgeo_course.alt_text import describe_figure
 
         return describe_figure(figure), None
     except Exception as error:  # noqa: BLE001 - an audit must not stop the figure it audits

@@ -24,7 +24,7 @@ Loaded by both builds (``_config.yml`` and ``_config_pt.yml``):
 - **Notebooks executed in the book's language** (``i18n_execute_in_language``: docname
   patterns; the Portuguese book gives ``*``, every notebook): a hidden first cell sets
   ``RSGEO_LANG`` and translates every figure as it is rendered and every table as it is shown
-  (:mod:`rsgeo.figure_language`), so the figures, widgets, tables, verdicts and hints of the
+  (:mod:`rsgeo_course.figure_language`), so the figures, widgets, tables, verdicts and hints of the
   translated book speak its language; a notebook no pattern matches shows the English build's
   execution.
 - **Notebooks to download in the book's language.** After a translated build, the copies of the
@@ -337,7 +337,8 @@ def translate_markdown(source, catalogue):
 
 def language_cell(language):
     """A code cell that makes rsgeo speak ``language`` in the kernel (hidden in the book): its
-    verdicts, hints and errors, and (:func:`rsgeo.figure_language.translate_rendered_figures`)
+    verdicts, hints and errors, and
+    (:func:`rsgeo_course.figure_language.translate_rendered_figures`)
     every figure the notebook renders and every table it shows."""
     return {"cell_type": "code", "execution_count": None, "id": "rsgeo-language",
             "metadata": {"tags": ["remove-cell"]}, "outputs": [],
@@ -346,7 +347,7 @@ def language_cell(language):
                        "verdicts, hints, errors,\n",
                        "# and the figures' and tables' texts (the notebook's code stays "
                        "English)\n",
-                       "from rsgeo.figure_language import translate_rendered_figures\n",
+                       "from rsgeo_course.figure_language import translate_rendered_figures\n",
                        "\n",
                        "translate_rendered_figures()"]}
 

@@ -26,10 +26,10 @@ from pathlib import Path
 
 import numpy as np
 
-from .._checks import as_bands_first, as_crs, as_image
-from .._i18n import _
-from ..errors import DataError, GridError
+from ..errors import DataError
 from ..gcp import read_points
+from ..language import _
+from ..validation import as_affine, as_bands_first, as_crs, as_image
 
 __all__ = ["Raster", "available", "path", "load", "available_gcps", "load_gcps", "save",
            "available_terrain"]
@@ -355,7 +355,7 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
         height), as ``dataset.GetGeoTransform()`` and ``gdalinfo`` give it;
         one in affine.Affine's order (pixel width first) is refused.
     crs : str, int or rasterio CRS, optional
-        E.g. ``"EPSG:29191"`` (see :func:`rsgeo.georef.as_crs`).
+        E.g. ``"EPSG:29191"`` (see :func:`rsgeo.crs.as_crs`).
     nodata : number, optional
 
     Returns
@@ -402,7 +402,8 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
         array = array.astype(np.float32)                  # exact: every float16 is a float32
     if not array.dtype.isnative:
         array = array.astype(array.dtype.newbyteorder("="))
-    transform = _as_affine(transform, "transform")
+    transform = None if transform is None else as_affine(transform, "transform",
+                                                         gdal_tuple=True)
     crs = None if crs is None else as_crs(crs, "crs")
     target = _writable(file)
     bands = array if array.ndim == 3 else array[np.newaxis]
@@ -435,78 +436,3 @@ def _writable(file):
     return target
 
 
-def _as_affine(transform, name="transform"):
-    """An affine.Affine from an Affine, a GDAL-ordered 6-sequence or None (None).
-
-    The one reading of a geotransform in rsgeo (:func:`save`,
-    :func:`rsgeo.terrain.orthorectify`): a 6-sequence is GDAL's order
-    (x0, pixel width, row rotation, y0, column rotation, pixel height), as
-    ``GetGeoTransform()`` and ``gdalinfo`` give it. One whose pixel width or
-    height is 0 while the other is not is affine.Affine's order (a, b, c, d,
-    e, f) read the wrong way (``Affine(20, 0, x0, 0, -20, y0)`` read as GDAL's
-    has pixel width 0): refused, as is any transform whose pixels have no area.
-
-    Parameters
-    ----------
-    transform : affine.Affine, sequence of 6 numbers or None
-    name : str
-        The argument's name, for the error message.
-
-    Returns
-    -------
-    affine.Affine or None
-
-    Raises
-    ------
-    TypeError
-        If ``transform`` is not an Affine, a sequence of numbers, or None.
-    ValueError
-        If it is not 6 finite numbers, is evidently in Affine's order, or
-        its pixels have no area.
-
-    Examples
-    --------
-    >>> _as_affine((500000.0, 20.0, 0.0, 7400000.0, 0.0, -20.0))
-    Affine(20.0, 0.0, 500000.0,
-           0.0, -20.0, 7400000.0)
-    """
-    import affine
-
-    if transform is None:
-        return None
-    if isinstance(transform, affine.Affine):
-        gt = transform.to_gdal()
-    else:
-        if isinstance(transform, (str, bytes)) or not hasattr(transform, "__len__"):
-            raise TypeError(_(
-                "{name} must be an affine.Affine or 6 finite numbers in GDAL's order (x0, "
-                "pixel width, row rotation, y0, column rotation, pixel height), got "
-                "{kind}").format(
-                    name=name, kind=type(transform).__name__))
-        try:
-            gt = tuple(float(v) for v in transform)
-        except (TypeError, ValueError):
-            gt = None
-        if gt is None or len(gt) != 6 or not np.isfinite(gt).all():
-            raise GridError(_(
-                "{name} must be an affine.Affine or 6 finite numbers in GDAL's order (x0, "
-                "pixel width, row rotation, y0, column rotation, pixel height), got "
-                "{value!r}").format(name=name, value=transform))
-        if (gt[1] == 0) != (gt[5] == 0):
-            raise GridError(_(
-                "{name} {value!r} read in GDAL's order (x0, pixel width, row rotation, y0, "
-                "column rotation, pixel height) has pixel width {width:g} and pixel height "
-                "{height:g}: it looks like affine.Affine's order (a, b, c, d, e, f); give "
-                "affine.Affine(*{name}) for that order, or affine.Affine.from_gdal(*{name}) "
-                "for GDAL's").format(name=name, value=tuple(transform), width=gt[1],
-                                  height=gt[5]))
-    if not np.isfinite(gt).all():
-        raise GridError(_("{name} must be an affine.Affine or 6 finite numbers, got "
-                          "{value!r}").format(name=name, value=transform))
-    determinant = gt[1] * gt[5] - gt[2] * gt[4]
-    if determinant == 0:
-        raise GridError(_(
-            "{name} {value!r} (GDAL's order) has pixels with no area (pixel width x height "
-            "- rotations = 0); a geotransform needs a nonzero pixel width and height").format(
-                name=name, value=tuple(gt)))
-    return transform if isinstance(transform, affine.Affine) else affine.Affine.from_gdal(*gt)
