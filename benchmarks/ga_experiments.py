@@ -231,7 +231,7 @@ def real_scene():
     # scale=1.0: plain 2 x 2 bilinear sampling of the 20 m scene at 30 m, as chapter 6 does
     # (gdalwarp would widen the kernel for this downsampling; chapter 4 shows the difference)
     adjustment = resample.warp(vegetation, ~ccd.transform, (212, 212), adjustment_transform,
-                               method="bilinear", nodata=-1.0, scale=1.0)
+                               method="bilinear", dst_nodata=-1.0, scale=1.0)
     reference = registration.keep_largest(
         registration.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
     moved = registration.keep_largest(

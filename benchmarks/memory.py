@@ -48,7 +48,7 @@ def _warp(n):
     about = affine.Affine.translation(n / 2, n / 2)
     mapping = about @ affine.Affine.rotation(3) @ affine.Affine.scale(0.98) @ ~about
     model = _AffineModel(mapping)
-    out = warp(image, model, (n, n), method="bilinear", nodata=0)
+    out = warp(image, model, (n, n), method="bilinear", dst_nodata=0)
     return image, out
 
 

@@ -64,7 +64,7 @@ output array itself (1 byte per pixel for uint8, 2 for int16).
 The table is printed and saved as CSV (default
 ``benchmarks/results/orthorectify.csv``), with the machine and the compile
 times as ``# key: value`` lines above the header (read it with
-``pandas.read_csv(file, comment="#")``). Rows that miss the goals of issue 27
+``pandas.read_csv(file, comment="#")``). Rows that miss the speed goals
 (>= 1.0x GDAL exact single-threaded, >= 1.7x rsgeo's own time with two
 threads) are listed at the end.
 """
@@ -465,7 +465,7 @@ def print_table(rows, threads):
 
 
 def misses(rows, threads, speedup_goal=0.85):
-    """The rows that miss issue 27's goals (>= 1.0x GDAL exact with one thread, two threads
+    """The rows that miss the speed goals (>= 1.0x GDAL exact with one thread, two threads
     >= 1.7x one), as text lines."""
     first = threads[0]
     lines = []
@@ -532,7 +532,7 @@ def main(argv=None):
                + (" --no-memory" if arguments.no_memory else ""))
     print("saved", save_csv(table, arguments.output, arguments.threads, command, extra))
     missed = misses(table, arguments.threads)
-    print(f"{len(missed)} miss(es) of issue 27's goals" + (":" if missed else ""))
+    print(f"{len(missed)} miss(es) of the speed goals" + (":" if missed else ""))
     for line in missed:
         print("  " + line)
 

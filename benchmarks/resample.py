@@ -76,7 +76,7 @@ The table is printed and saved as CSV (default
 ``benchmarks/results/resample.csv``, which chapter 4 shows), with the date, the
 machine's CPU count, the library versions and the compile times as
 ``# key: value`` lines above the header (read it with
-``pandas.read_csv(file, comment="#")``). Rows that miss the goals of issue 27
+``pandas.read_csv(file, comment="#")``). Rows that miss the speed goals
 (>= 1.0x GDAL exact and approximated single-threaded, >= 1.7x with two
 threads) are listed at the end.
 """
@@ -213,7 +213,7 @@ def vrt_xml(source_path, case, shape, method, dtype, threads, max_error=None, sc
 
 def rsgeo_runner(image, case, shape, method, threads, error_threshold=0.0, scale=1.0):
     def run():
-        return warp(image, case.mapping, shape, case.transform, method=method, nodata=0,
+        return warp(image, case.mapping, shape, case.transform, method=method, dst_nodata=0,
                     num_threads=threads, scale=scale, error_threshold=error_threshold)
     return run
 
@@ -505,7 +505,7 @@ def print_table(rows, threads):
 
 
 def misses(rows, threads, speedup_goal=0.85):
-    """The rows that miss issue 27's goals, as text lines.
+    """The rows that miss the speed goals, as text lines.
 
     ``speedup_goal``: the least speed-up per thread (1.7 with two threads).
     """
@@ -573,7 +573,7 @@ def main(argv=None):
                + " --downsample " + " ".join(map(str, arguments.downsample)))
     print("saved", save_csv(table, arguments.output, arguments.threads, command, extra))
     missed = misses(table, arguments.threads)
-    print(f"{len(missed)} miss(es) of issue 27's goals" + (":" if missed else ""))
+    print(f"{len(missed)} miss(es) of the speed goals" + (":" if missed else ""))
     for line in missed:
         print("  " + line)
 

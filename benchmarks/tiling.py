@@ -111,20 +111,22 @@ def child(case, workers, n, tile, method, folder):
             image = dataset.read(1)
         out = warp(image, model, shape, grid, method=method)
     elif case == "warp_tiled -> array":
-        out = resample.warp_tiled(source, model, shape, grid, (tile, tile), method=method)
+        out = resample.warp_tiled(source, model, shape, grid, tile_shape=(tile, tile),
+                                  method=method)
     elif case == "warp_tiled -> GeoTIFF":
         result = result.with_suffix(".tif")
         with rasterio.open(result, "w", driver="GTiff", width=shape[1], height=shape[0],
                            count=1, dtype="uint8", transform=grid, tiled=True,
                            blockxsize=256, blockysize=256) as dataset:
-            resample.warp_tiled(source, model, shape, grid, (tile, tile), method=method,
+            resample.warp_tiled(source, model, shape, grid, tile_shape=(tile, tile), method=method,
                               out=dataset)
         out = None
     else:
         import dask
 
         scheduler = case.split()[-1]
-        array = resample.warp_dask(source, model, shape, grid, (tile, tile), method=method)
+        array = resample.warp_dask(source, model, shape, grid, tile_shape=(tile, tile),
+                                   method=method)
         with dask.config.set(scheduler=scheduler, num_workers=workers):
             out = array.compute()
     seconds = time.perf_counter() - start

@@ -1,32 +1,34 @@
-"""rsgeo: geometric correction of remote-sensing images, for teaching.
+"""rsgeo: geometric correction of remote-sensing images.
 
-One module per topic of the course:
+The maths of the course on geometric correction, usable without it, one topic per module:
 
-- :mod:`rsgeo.data` - real CBERS scenes shipped with the package;
-- :mod:`rsgeo.synthetic` - data with a known answer;
-- :mod:`rsgeo.distortion` - systematic distortions (chapter 1);
+- :mod:`rsgeo.data` - real scenes (CBERS, Landsat, a DEM) and grids shipped with the package;
+  :mod:`rsgeo.synthetic` - data with a known answer;
+- :mod:`rsgeo.distortion` - systematic distortions' formulas (chapter 1);
 - :mod:`rsgeo.transforms` - the mapping protocol every model follows (``model(points)``,
   ``model.residuals(src, dst)``, ``model.inverse()``), one registry of model kinds (linear,
   Helmert, polynomial 1-3, projective, TPS) and ``fit_transform`` (chapters 2, 3b);
 - :mod:`rsgeo.accuracy` - residuals, RMS, leave-one-out, check points, ``refine_gcps`` for any
-  kind (chapter 3);
+  kind; the PEC-PCD, ASPRS and CE90 standards (chapter 3);
 - :mod:`rsgeo.gcp` - GCP sets, their CRS and QGIS ``.points`` files (chapter 2);
-- :mod:`rsgeo.georef` - CRSs and datums (SAD69 -> SIRGAS 2000) through PROJ, and a complete
-  georeferencing run, ``georeference`` (chapter 2b);
-- :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic (chapter 4), with the models
-  evaluated inside the kernels (:mod:`rsgeo.transformer`, GDAL's thin-plate spline in
-  :mod:`rsgeo.thin_plate`) and scenes warped tile by tile (:mod:`rsgeo.tiling`);
-- :mod:`rsgeo.terrain` - relief displacement, RPCs fitted to a sensor, orthorectification with a
-  DEM (chapter 4b);
+- :mod:`rsgeo.crs`, :mod:`rsgeo.heights` - CRSs and datums (SAD69 -> SIRGAS 2000) through PROJ;
+  the geoid and ellipsoidal heights (chapters 2b, 4b);
+- :mod:`rsgeo.resample` - GDAL-exact nearest, bilinear, cubic and average, ``warp`` with the
+  models evaluated inside the kernels, ``reproject``, ``georeference``, tiled warps (chapter 4);
+- :mod:`rsgeo.relief`, :mod:`rsgeo.dem`, :mod:`rsgeo.ortho` - relief displacement, a DEM's
+  heights, orthorectification (chapter 4b);
+- :mod:`rsgeo.sensors` - sensor models: systematic distortion, raw scene, pushbroom, frame
+  camera, RPCs fitted and refined (chapters 1, 4b-4d);
 - :mod:`rsgeo.radiometry` - contrast matching by regression (chapter 5, the regression paper);
-- :mod:`rsgeo.regions`, :mod:`rsgeo.matching` - homologous regions by a genetic algorithm
-  (chapter 6, the GA paper);
-- :mod:`rsgeo.tiepoints` - local shifts by correlation (``measure_shifts``), automatic tie
-  points by correlation and by features, and the registration pipeline they share with the GA
-  (chapter 6c);
-- :mod:`rsgeo_course.exercises` - the exercises' checks, declared per exercise notebook;
-- :mod:`rsgeo.errors` - the errors rsgeo raises, every one a ``ValueError``;
-- :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets on top of the maths.
+- :mod:`rsgeo.registration` - tie points by correlation and by features, the registration
+  pipeline, band-to-band registration, and the GA paper's homologous regions (chapters 6, 6c);
+- :mod:`rsgeo.plot`, :mod:`rsgeo.widgets` - figures and interactive widgets of those results;
+- :mod:`rsgeo.validation`, :mod:`rsgeo.language`, :mod:`rsgeo.errors` - input checks, the
+  language of messages, the errors rsgeo raises (every one a ``ValueError``).
+
+The course's own machinery (exercise checks, figure descriptions and translations) is the
+package ``rsgeo_course``, built on this one; rsgeo imports nothing of it. Names that moved keep
+working from their old homes for one release, with a ``DeprecationWarning``.
 """
 
 import importlib

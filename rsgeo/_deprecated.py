@@ -8,7 +8,7 @@ home; each use warns with a ``DeprecationWarning`` naming the new home (scikit-i
 import importlib
 import warnings
 
-__all__ = ["moved_names", "moved_module"]
+__all__ = ["moved_names", "moved_module", "renamed_arguments"]
 
 #: The release after which the old homes go.
 REMOVED_IN = "0.3"
@@ -69,6 +69,9 @@ def moved_module(old_module, new_module):
         except ImportError as error:
             raise ImportError(f"{old_module} moved to {new_module}, which is not installed "
                               f"({error}); install the course beside rsgeo") from error
+        if not hasattr(module, name):
+            raise AttributeError(f"module {old_module!r} (now {new_module}) has no attribute "
+                                 f"{name!r}")
         _warn(f"{old_module}.{name}", f"{new_module}.{name}")
         return getattr(module, name)
 
@@ -76,3 +79,60 @@ def moved_module(old_module, new_module):
         return sorted(getattr(importlib.import_module(new_module), "__all__", []))
 
     return __getattr__, __dir__
+
+
+def renamed_arguments(old_order, renamed):
+    """Decorate a function whose arguments were renamed or made keyword-only.
+
+    A call in the old form keeps working for one release, with a ``DeprecationWarning``: an
+    old keyword (``nodata=``) is passed as its new name (``dst_nodata=``), and arguments
+    given by position beyond the new positional ones are passed by their old names.
+
+    Parameters
+    ----------
+    old_order : sequence of str
+        The function's parameters in their old order (for arguments given by position).
+    renamed : dict
+        ``{old name: new name}``.
+
+    Returns
+    -------
+    callable
+        The decorator.
+    """
+    import functools
+    import inspect
+
+    def decorate(function):
+        parameters = inspect.signature(function).parameters.values()
+        positional = sum(parameter.kind is inspect.Parameter.POSITIONAL_OR_KEYWORD
+                         for parameter in parameters)
+        where = f"{function.__module__.split('._')[0]}.{function.__name__}"
+
+        @functools.wraps(function)
+        def wrapper(*args, **kwargs):
+            if len(args) > positional:
+                extra = old_order[positional:len(args)]
+                if len(extra) < len(args) - positional:
+                    raise TypeError(f"{where} takes {positional} positional arguments, got "
+                                    f"{len(args)}")
+                warnings.warn(f"{where}: passing {', '.join(extra)} by position is deprecated; "
+                              f"pass {', '.join(renamed.get(name, name) for name in extra)} "
+                              "by keyword", DeprecationWarning, stacklevel=2)
+                for name, value in zip(extra, args[positional:], strict=True):
+                    if renamed.get(name, name) in kwargs or name in kwargs:
+                        raise TypeError(f"{where} got {name} twice")
+                    kwargs[renamed.get(name, name)] = value
+                args = args[:positional]
+            for old, new in renamed.items():
+                if old in kwargs:
+                    if new in kwargs:
+                        raise TypeError(f"{where} got both {old}= (its old name) and {new}=")
+                    warnings.warn(f"{where}: {old}= is now {new}=", DeprecationWarning,
+                                  stacklevel=2)
+                    kwargs[new] = kwargs.pop(old)
+            return function(*args, **kwargs)
+
+        return wrapper
+
+    return decorate

@@ -21,7 +21,7 @@ __all__ = [
 def line_of_sight_on_dem(ground, shape, dem, dem_transform, iterations):
     """Where lines of sight meet a DEM, by the fixed-point iteration h -> (x, y) -> h.
 
-    One idea for every sensor model of the course (:class:`PushbroomSensor`,
+    One idea for every sensor model of the course (:class:`~rsgeo.sensors.PushbroomSensor`,
     :class:`rsgeo.synthetic.RawSensor`): start on the datum (h = 0), find where each line of
     sight is at that height, read the DEM there, repeat. Each step shrinks the error by the
     terrain's slope times tan θ, so a few steps suffice on gentle terrain.
@@ -116,7 +116,27 @@ def dem_height(dem, dem_transform, x, y, dem_nodata=None):
 
 
 def prepare_dem(dem, dem_transform, dem_nodata):
-    """(DEM with NaN holes, its inverse geotransform, its holes, its transform) for sampling."""
+    """A DEM made ready for :func:`sample_dem`: checked, float64, its holes NaN.
+
+    Parameters
+    ----------
+    dem : 2-D ndarray
+        Heights in metres.
+    dem_transform : affine.Affine
+        The DEM's geotransform (pixel corner -> map).
+    dem_nodata : number or None
+        The DEM's nodata value; NaN and infinity are holes too.
+
+    Returns
+    -------
+    tuple
+        ``(heights with NaN holes, GDAL's inverse geotransform, holes mask, dem_transform)``.
+
+    Raises
+    ------
+    rsgeo.errors.ImageError
+        If the DEM is not a 2-D array of real heights.
+    """
     kind = np.asarray(dem).dtype.kind
     if kind not in "uif":
         raise ImageError(_(
@@ -136,8 +156,22 @@ def prepare_dem(dem, dem_transform, dem_nodata):
 
 
 def sample_dem(prepared, x, y):
-    """Heights at points (shape of ``x``); with (count, first x, first y) of the points outside
-    the DEM and of those on a hole (count 0: none)."""
+    """Heights at points, GDAL's bilinear sampling, and which points it could not sample.
+
+    Parameters
+    ----------
+    prepared : tuple
+        :func:`prepare_dem`'s DEM.
+    x, y : array_like
+        Map coordinates in the DEM's CRS.
+
+    Returns
+    -------
+    tuple
+        ``(heights (shape of x), outside, holed)``: ``outside`` and ``holed`` are
+        (count, first x, first y) of the points outside the DEM and over a hole (count 0:
+        none).
+    """
     work, inverse, _holes, _transform = prepared
     flat_x, flat_y = np.ravel(x), np.ravel(y)
     out = np.empty(flat_x.size)
@@ -156,7 +190,24 @@ def sample_dem(prepared, x, y):
 
 
 def raise_dem_problems(prepared, outside, holed, n):
-    """The errors of points outside the DEM or over its holes (counts over ``n`` points)."""
+    """Raise the error of points outside the DEM or over its holes, if there are any.
+
+    Parameters
+    ----------
+    prepared : tuple
+        :func:`prepare_dem`'s DEM.
+    outside, holed : tuple
+        :func:`sample_dem`'s (count, first x, first y) of each.
+    n : int
+        How many points were sampled.
+
+    Raises
+    ------
+    rsgeo.errors.GridError
+        If points are outside the DEM.
+    rsgeo.errors.ImageError
+        If points are over its holes.
+    """
     work, _inverse, holes, dem_transform = prepared
     if outside[0]:
         raise GridError(_("the DEM does not cover {value} of {n} points (first at "

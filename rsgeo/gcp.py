@@ -17,11 +17,10 @@ from pathlib import Path
 import numpy as np
 
 from .accuracy import residuals
-from .accuracy._residuals import as_flags
 from .errors import CRSError, DataError, GCPError
 from .language import _
 from .transforms import fit_transform, registered
-from .validation import as_points
+from .validation import as_flags, as_points
 
 __all__ = ["GCPSet", "read_points", "write_points"]
 

@@ -31,7 +31,7 @@ from .errors import DataError, GridError
 from .language import _
 
 __all__ = ["GEOIDS", "VERTICAL_DATUMS", "geoid_undulation", "geoid_coverage",
-           "geoid_on_grid", "to_ellipsoidal", "check_vertical"]
+           "geoid_on_grid", "add_geoid", "to_ellipsoidal", "check_vertical"]
 
 #: The geoids rsgeo ships: name -> (source CRS, target CRS, grid file) of PROJ's operation.
 #: EGM96 height (EPSG:5773) on WGS 84: PROJ applies "WGS 84 to EGM96 height (1)"
@@ -216,13 +216,31 @@ def geoid_on_grid(transform, shape, crs=None, geoid="EGM96"):
     """
     from .validation import as_shape
 
-    return _add_geoid(np.zeros(as_shape(shape, "shape")), transform, crs, geoid)
+    return add_geoid(np.zeros(as_shape(shape, "shape")), transform, crs, geoid)
 
 
-def _add_geoid(heights, transform, crs, geoid):
-    """Add N at each cell centre of a grid to ``heights`` (float64, (rows, cols)) in place and
-    return it: strip by strip of rows, so that a DEM becomes H + N without a second array of
-    its size (see :func:`geoid_on_grid`)."""
+def add_geoid(heights, transform, crs, geoid):
+    """Add the geoid undulation N at each cell centre of a grid to ``heights``, in place.
+
+    Strip by strip of rows, so that a DEM becomes H + N without a second array of its size
+    (:func:`geoid_on_grid` is the same on zeros).
+
+    Parameters
+    ----------
+    heights : ndarray
+        float64, (rows, cols): orthometric heights H, made ellipsoidal h = H + N.
+    transform : affine.Affine
+        The grid's geotransform (pixel corner -> map).
+    crs : str, rasterio.crs.CRS or None
+        The grid's CRS; None is EPSG:4326.
+    geoid : str
+        The geoid model (``"EGM96"``, ...), as :func:`check_vertical` accepts it.
+
+    Returns
+    -------
+    ndarray
+        ``heights``, changed.
+    """
     from .validation import as_affine, as_crs
 
     _geoid(geoid)

@@ -167,7 +167,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
 
     For each output cell centre: its longitude and latitude (through
     ``dst_crs`` when the grid is projected), its height from the DEM
-    (bilinear, GDAL's :func:`dem_height`), the RPC's image position
+    (bilinear, GDAL's :func:`~rsgeo.dem.dem_height`), the RPC's image position
     (:meth:`RPCModel.project`), and the value there by
     :func:`rsgeo.resample.interpolate` (GDAL's kernels, plain 2 × 2 and 4 × 4:
     GDAL's XSCALE = YSCALE = 1). This is ``gdalwarp -rpc -to RPC_DEM=dem.tif
@@ -260,7 +260,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     (20, 20)
     """
     from .crs import as_crs
-    from .heights import _add_geoid, check_vertical
+    from .heights import add_geoid, check_vertical
 
     image = as_bands_first(as_image(image))
     check_choice(method, "method", METHODS)
@@ -281,7 +281,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         # inside one EGM96 cell and within 2 mm for a 90 m DEM where it straddles two (measured
         # over Brazil), N·tan θ of that is nothing, and it costs one lookup per DEM cell, not
         # one per output cell. Holes stay NaN. (rsgeo.heights.geoid_on_grid, added in place.)
-        _add_geoid(prepared[0], dem_transform, dem_crs, dem_vertical)
+        add_geoid(prepared[0], dem_transform, dem_crs, dem_vertical)
     height, width = image.shape[-2:]
     num_threads = as_num_threads(num_threads)
     out = np.empty((bands,) + shape, dtype=image.dtype)

@@ -19,7 +19,7 @@ __all__ = [
     "as_resolution", "as_num_threads", "as_number", "as_integer", "as_finite", "check_choice",
     "as_crs",
     "as_output_shape", "as_affine", "memory_bytes", "as_lon_lat_height", "few_values",
-    "as_invertible_affine",
+    "as_invertible_affine", "as_flags",
 ]
 
 
@@ -853,3 +853,39 @@ def _from_gdal_sequence(transform, name):
             "- rotations = 0); a geotransform needs a nonzero pixel width and height").format(
                 name=name, value=tuple(gt)))
     return transform if isinstance(transform, affine.Affine) else affine.Affine.from_gdal(*gt)
+
+
+def as_flags(flags, name):
+    """``flags`` as a bool array: only booleans or 0/1 (0.5 or NaN would read as True).
+
+    Parameters
+    ----------
+    flags : array_like
+        One flag per item (a GCP enabled, a point a check point).
+    name : str
+        Their name in the error message.
+
+    Returns
+    -------
+    ndarray of bool
+        The flags.
+
+    Raises
+    ------
+    GCPError
+        If a flag is not True/False or 1/0.
+    """
+    array = np.asarray(flags)
+    if array.dtype != bool:
+        try:
+            numbers = array.astype(np.float64)
+        except (TypeError, ValueError):
+            raise GCPError(_("{name} must hold True/False (or 1/0) flags, got {flags!r}").format(
+                    name=name, flags=flags)) from None
+        if not np.isin(numbers, (0.0, 1.0)).all():
+            raise GCPError(_("{name} must hold True/False (or 1/0) flags, got values "
+                             "{tolist}").format(
+                    name=name,
+                    tolist=np.unique(numbers[~np.isin(numbers, (0.0, 1.0))])[:5].tolist()))
+        array = numbers.astype(bool)
+    return array

@@ -14,7 +14,8 @@ def rsgeo_speaks_english():
 
 
 # Markers by what a test module needs (pyproject.toml registers them; the README gives the fast
-# run): a change to one rsgeo module needs `-m "not notebooks and not browser"`.
+# run): a change to one rsgeo module needs `-m "not notebooks and not browser and not slow"`
+# (``slow`` is given per test, where it is used).
 MODULE_MARKERS = {
     "notebooks": {"test_notebooks", "test_student_edition", "test_prose_numbers", "test_grade",
                   "test_readme", "test_i18n", "test_book_html", "test_portuguese_book"},

@@ -1,5 +1,5 @@
 """A small synthetic class for tests/test_grade.py: one submission of each kind an instructor
-meets (issue 29), all made from a two-task slice of the course's shortest exercise notebook
+meets, all made from a two-task slice of the course's shortest exercise notebook
 (ex02b: 2b.1 and 2b.2, without the nat1 scene that 2b.3 loads), so that the class grades in
 seconds.
 

@@ -214,7 +214,7 @@ def test_mean_error_of_other_kinds_divides_by_their_degrees_of_freedom():
 
 def test_predicted_error_of_any_kind_is_the_polynomials_formula_for_polynomials():
     # the propagation every other kind uses gives the analytic σ²a(AᵀA)⁻¹a for polynomials
-    from rsgeo.accuracy import _propagated_deviation
+    from rsgeo.accuracy._residuals import _propagated_deviation
 
     rng = np.random.default_rng(0)
     src = rng.uniform(0, 1000, (12, 2)) + [5e5, 7e6]

@@ -130,7 +130,7 @@ def test_save_refuses_a_transform_it_cannot_read(tmp_path, transform):
 
 
 def test_save_refuses_a_tuple_in_affine_order_and_names_from_gdal(tmp_path):
-    # issue 26: Affine's order (a, b, c, d, e, f) read as GDAL's wrote a pixel width of 0
+    # Affine's order (a, b, c, d, e, f) read as GDAL's wrote a pixel width of 0
     import affine
     import rasterio
 
@@ -150,7 +150,7 @@ def test_save_refuses_a_tuple_in_affine_order_and_names_from_gdal(tmp_path):
 
 
 def test_save_refuses_settings_beside_a_raster(tmp_path):
-    # issue 26: transform= was ignored without a word when a Raster was given
+    # transform= was ignored without a word when a Raster was given
     import affine
 
     ccd = data.load("cbers2b_rgb342")

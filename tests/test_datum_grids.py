@@ -1,5 +1,5 @@
 """IBGE's datum grids, shipped with rsgeo: read by rsgeo and by PROJ, and the transformation
-PROJ applies, named (issue 28: "the grid shift equals PROJ's own pipeline to < 1 mm")."""
+PROJ applies, named ("the grid shift equals PROJ's own pipeline to < 1 mm")."""
 
 import pickle
 
@@ -214,7 +214,7 @@ def test_a_transformation_asked_by_name_is_applied_or_refused():
         assert shift.transformation.codes == ("EPSG:15485",)
     default = crs.datum_shift(gcps.map_xy, gcps.crs, "EPSG:31981")
     gap = np.hypot(default.dx - shift.dx, default.dy - shift.dy)
-    assert np.all((gap > 5) & (gap < 10))                     # issue 28: 7.8 m
+    assert np.all((gap > 5) & (gap < 10))                     # 7.8 m
     with pytest.raises(CRSError, match=r"PROJ knows no operation EPSG:1234 from EPSG:29191 "
                                        r"to EPSG:31981; it knows: EPSG:5528 SAD69 to SIRGAS "
                                        r"2000 \(2\); EPSG:15485"):

@@ -79,7 +79,7 @@ def test_silent_wrong_answers_are_value_errors(call, message):
         call()
 
 
-# --- Issue 26: .points files ---
+# --- .points files ---
 
 GOOD = "mapX,mapY,sourceX,sourceY,enable\n500000,7400000,10,-20,1\n500100,7400000,20,-20,1\n"
 

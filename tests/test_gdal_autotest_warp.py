@@ -34,7 +34,7 @@ SMALL_TRANSFORM = affine.Affine(5.0, 0, 10.0, 0, -5.0, 30.0)
 def test_warp_19_tiny_images_onto_their_own_grid(size, method, dtype):
     image = np.full((size, size), 10.1).astype(dtype)
     shape = (size, size)
-    got = warp(image, ~SMALL_TRANSFORM, shape, SMALL_TRANSFORM, method=method, nodata=None)
+    got = warp(image, ~SMALL_TRANSFORM, shape, SMALL_TRANSFORM, method=method, dst_nodata=None)
     gdal = gdalwarp_reproject(image, SMALL_TRANSFORM, SMALL_TRANSFORM, shape, method, None)
     assert np.array_equal(gdal, image)      # what GDAL's test checks
     assert np.array_equal(got, gdal)
@@ -57,7 +57,7 @@ def warp_22_image(size=1001):
 def test_warp_22_many_chunks_onto_the_own_grid(method):
     image = warp_22_image()
     transform = affine.Affine(0.01, 0, 2.0, 0, -0.01, 49.0)
-    got = warp(image, ~transform, image.shape, transform, method=method, nodata=None)
+    got = warp(image, ~transform, image.shape, transform, method=method, dst_nodata=None)
     gdal = gdalwarp_reproject(image, transform, transform, image.shape, method, None,
                               crs="EPSG:4326", warp_mem_limit=1)
     assert np.array_equal(gdal, image)
@@ -82,7 +82,7 @@ THIRDS = {"3by3_average": (affine.Affine(1 / 3, 0, 0.0, 0, -1 / 3, 1.0), (3, 3))
 def test_warp_weighted_average(case):
     image = np.arange(1.0, 17.0).reshape(4, 4)
     dst_transform, shape = THIRDS[case]
-    got = warp(image, ~FOUR_BY_FOUR, shape, dst_transform, method="average", nodata=-1.7e308)
+    got = warp(image, ~FOUR_BY_FOUR, shape, dst_transform, method="average", dst_nodata=-1.7e308)
     gdal = gdal_warp(image, affine_source(FOUR_BY_FOUR), dst_transform, shape, "average",
                      -1.7e308)
     np.testing.assert_array_equal(got, gdal)

@@ -252,7 +252,7 @@ def test_georeference_accepts_the_other_model_kinds():
     assert abs(helmert.array.shape[-1] - linear.array.shape[-1]) < 5
 
 
-# -- issue 26: datum shifts between unlike CRSs, points outside a CRS's area of use ------------
+# -- datum shifts between unlike CRSs, points outside a CRS's area of use ------------
 
 @pytest.mark.parametrize("src, dst, kinds", [
     ("EPSG:4326", SIRGAS_UTM23S,
@@ -330,7 +330,7 @@ def test_datum_shift_inside_the_areas_is_unchanged():
     np.testing.assert_array_equal(distance, np.hypot(dx, dy))
 
 
-# -- issue 26: georeference's input and its output's size ---------------------------------------
+# -- georeference's input and its output's size ---------------------------------------
 
 def test_georeference_given_a_bare_array_says_its_type_and_shape():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
@@ -354,7 +354,7 @@ def test_georeference_refuses_an_output_too_big_before_allocating_it():
         resample.reproject(data.load("nat1"), SIRGAS_UTM23S, resolution=0.01)
 
 
-# -- issue 26: a polynomial of degree 2 or 3 extrapolated far beyond its GCPs -------------------
+# -- a polynomial of degree 2 or 3 extrapolated far beyond its GCPs -------------------
 
 SCENE_ORIGIN = (500000.0, 7400000.0)
 
@@ -426,7 +426,7 @@ def test_the_shipped_gcps_warn_that_degree_2_and_3_extrapolate_at_the_corners(ki
         resample.georeference(raster, gcps, kind=kind, order=order, resolution=20.0)
 
 
-# -- issue 26: coordinates no position on Earth has never reach PROJ -----------------------------
+# -- coordinates no position on Earth has never reach PROJ -----------------------------
 
 HUGE_CASES = """
 import time

@@ -1,4 +1,4 @@
-"""The grader (exercises/grade.py, judge.py, sandbox.py) on a synthetic class (issue 29): each
+"""The grader (exercises/grade.py, judge.py, sandbox.py) on a synthetic class: each
 kind of submission an instructor meets gets the verdict it deserves, no cheat changes a verdict,
 and nothing, whatever a file is named, loses the class's rows."""
 

@@ -127,7 +127,7 @@ def test_translations_keep_the_code_maths_and_references(po):
         found = re.findall(r"\{[\w:-]+\}`[^`]*`|(?<!\})`[^`]*`|"
                            r"\$[^$]+\$|\{\w*(?:![rsa])?(?::[^}]*)?\}", text)
         # a glue role names its notebook in a translation ({glue:text}`04_resampling.ipynb::rms`):
-        # myst-nb resolves a translated paragraph's glue only in that form (DESIGN.md)
+        # myst-nb resolves a translated paragraph's glue only in that form
         found = [re.sub(r"^(\{glue(?::\w+)?\}`)[\w.-]+\.ipynb::", r"\1", item) for item in found]
         return sorted(re.sub(r"`[^`<]*<([^>]*)>`$", r"<\1>", item) for item in found)
 

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rsgeo import matching, registration, synthetic
+from rsgeo import registration, synthetic
 from rsgeo.registration import _genetic as genetic
 
 
@@ -162,7 +162,7 @@ def test_ga_reaches_the_certified_optimum_on_fixed_seeds(n, encoding):
 def test_the_success_check_fails_on_a_planted_bug(monkeypatch):
     # the fitness's sign flipped: the GA now minimises FA, and the check above must notice
     compiled = genetic._fitness_kernel
-    monkeypatch.setattr(matching, "_fitness_kernel", lambda *arguments: -compiled(*arguments))
+    monkeypatch.setattr(genetic, "_fitness_kernel", lambda *arguments: -compiled(*arguments))
     assert ga_optimum_rate(8, range(100, 105)) == 0
 
 
@@ -372,7 +372,7 @@ def real_scene():
     moved = (affine.Affine.translation(centre[0] + 150, centre[1] - 90) @ affine.Affine.rotation(5)
              @ affine.Affine(30, 0, -106 * 30, 0, -30, 106 * 30))
     image = resample.warp(vegetation, ~ccd.transform, (212, 212), moved, method="bilinear",
-                          nodata=-1.0)
+                          dst_nodata=-1.0)
     reference = registration.keep_largest(
         registration.forest_segments(vegetation, threshold=0.55, min_area=25), 8)
     adjustment = registration.keep_largest(
@@ -427,7 +427,7 @@ def test_evolution_frame_spans_the_whole_run_from_the_first_generation():
 
 
 def test_binary_coding_refuses_more_labels_than_8_bits_hold():
-    # issue 26: 256+ reference segments gave an OverflowError from NumPy
+    # 256+ reference segments gave an OverflowError from NumPy
     rng = np.random.default_rng(0)
     adjustment = registration.Mesh(rng.uniform(0, 1000, (4, 2)), rng.uniform(1, 10, 4))
     big = registration.Mesh(rng.uniform(0, 1000, (300, 2)), rng.uniform(1, 10, 300))

@@ -44,7 +44,7 @@ def test_the_scanner_finds_what_it_should(tmp_path):
 @pytest.mark.parametrize("path", CHAPTERS, ids=lambda path: path.name)
 def test_the_translation_keeps_every_glued_number(path):
     # a translated paragraph is parsed without the notebook's glue data: its roles must name
-    # the notebook (DESIGN.md), and none may be lost or typed instead
+    # the notebook, and none may be lost or typed instead
     import re
 
     from babel.messages.pofile import read_po

@@ -227,7 +227,7 @@ def test_match_histograms_works_on_floats_and_refuses_nan():
 
 
 def test_fit_gain_offset_refuses_complex_images():
-    # issue 26: complex input was silently made real
+    # complex input was silently made real
     x = np.arange(100.0).reshape(10, 10)
     with pytest.raises(TypeError, match="x_image must hold real numbers.*complex128"):
         radiometry.fit_gain_offset(x + 1j, x)
@@ -246,7 +246,7 @@ def test_fit_gain_offset_refuses_a_mask():
 
 
 def test_fit_gain_offset_refuses_what_cannot_be_regressed():
-    # issue 26: a constant image, no covariance or an overflowing spread gave gain NaN
+    # a constant image, no covariance or an overflowing spread gave gain NaN
     x = np.arange(100.0).reshape(10, 10)
     with pytest.raises(ValueError, match="x_image is constant.*cannot be regressed"):
         radiometry.fit_gain_offset(np.full((10, 10), 7, np.uint8), x)
@@ -270,7 +270,7 @@ def test_fit_gain_offset_on_64_bit_integers_matches_numpy_in_float64():
 
 
 def test_fit_gain_offset_refuses_smooth_on_a_band_stack():
-    # issue 26: smooth filtered across bands; a band stack is fitted band by band
+    # smooth filtered across bands; a band stack is fitted band by band
     stack = np.stack([np.arange(100.0).reshape(10, 10)] * 2)
     with pytest.raises(ValueError, match="smooth filters one band.*\\(2, 10, 10\\)"):
         radiometry.fit_gain_offset(stack, 2 * stack, smooth=3)
@@ -278,7 +278,7 @@ def test_fit_gain_offset_refuses_smooth_on_a_band_stack():
     assert round(fit.gain, 9) == 2.0
 
 
-# -- issue 26: 64-bit images -------------------------------------------------
+# -- 64-bit images -------------------------------------------------
 
 @pytest.mark.parametrize("dtype", ["int64", "uint64"])
 def test_apply_gain_offset_clips_64_bit_results_to_the_dtype_exactly(dtype):

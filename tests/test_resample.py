@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from rsgeo import transforms
 from rsgeo._kernels import resampling
-from rsgeo.resample import METHODS, grid_positions, interpolate, keys_weights, warp
+from rsgeo.resample import METHODS, _warp, grid_positions, interpolate, keys_weights, warp
 
 from gdal_reference import affine_source, gcp_source, gdal_warp
 
@@ -68,7 +68,7 @@ def test_polynomial_warp_matches_gdal_bit_for_bit(method):
     shape = (400, 400)
     expected = gdal_warp(image, gcp_source(image_xy, map_xy, 2), dst_transform, shape, method, 0)
     model = transforms.fit_polynomial(map_xy, image_xy, 2)
-    got = warp(image, model, shape, dst_transform, method=method, nodata=0)
+    got = warp(image, model, shape, dst_transform, method=method, dst_nodata=0)
     assert np.count_nonzero(got != expected) == 0
 
 
@@ -237,7 +237,7 @@ def test_affine_warp_computes_positions_like_grid_positions(method, dtype):
     shape = (64, 77)
     cols, rows = grid_positions(shape, mapping)
     expected = interpolate(image, cols, rows, method, nodata=7)
-    got = warp(image, mapping, shape, method=method, nodata=7)
+    got = warp(image, mapping, shape, method=method, dst_nodata=7)
     assert (expected == 7).any() and (expected != 7).any()     # both inside and outside
     assert np.array_equal(got, expected)
 
@@ -413,7 +413,7 @@ def test_warp_chooses_the_scale_as_gdalwarp_does(grid, method, nodata):
     dst_transform, shape = DOWNSAMPLED_GRIDS[grid]
     image = noise((300, 400), seed=13)
     expected = gdalwarp_reproject(image, SOURCE_TRANSFORM, dst_transform, shape, method, nodata)
-    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method=method, nodata=nodata)
+    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method=method, dst_nodata=nodata)
     assert np.count_nonzero(got != expected) == 0
     xscale, yscale = grid_scale(~SOURCE_TRANSFORM, shape, dst_transform, image.shape)
     assert xscale < 0.95 and yscale < 0.95
@@ -440,7 +440,7 @@ def test_the_hrc_scene_taken_to_the_ccd_grid_matches_gdalwarp(method):
     hrc, ccd = data.load("cbers2b_hrc"), data.load("cbers2b_rgb342")
     shape = ccd.array.shape[-2:]
     expected = gdalwarp_reproject(hrc.array, hrc.transform, ccd.transform, shape, method, None)
-    got = warp(hrc.array, ~hrc.transform, shape, ccd.transform, method=method, nodata=None)
+    got = warp(hrc.array, ~hrc.transform, shape, ccd.transform, method=method, dst_nodata=None)
     assert np.count_nonzero(got != expected) == 0
     assert grid_scale(~hrc.transform, shape, ccd.transform, hrc.array.shape) == (0.125, 0.125)
 
@@ -562,7 +562,7 @@ def test_average_matches_gdal(grid, dtype):
         expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape,
                              "average", nodata, scale=scale)
         got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method="average",
-                   nodata=nodata)
+                   dst_nodata=nodata)
         assert np.count_nonzero(got != expected) == 0
     # gdalwarp's own scale, without nodata. (Upsampled, gdalwarp cuts this grid into
     # chunks and takes the corners relative to each chunk's source window, which moves
@@ -582,7 +582,7 @@ def test_average_through_a_polynomial_matches_gdal():
     scale = grid_scale(model, shape, dst_transform, image.shape)
     expected = gdal_warp(image, gcp_source(image_xy, map_xy, 2), dst_transform, shape, "average",
                          0, scale=scale)
-    got = warp(image, model, shape, dst_transform, method="average", nodata=0, strip_rows=7)
+    got = warp(image, model, shape, dst_transform, method="average", dst_nodata=0, strip_rows=7)
     assert (got != 0).sum() > got.size / 2
     assert np.count_nonzero(got != expected) == 0
 
@@ -591,7 +591,7 @@ def test_average_is_the_block_mean_on_whole_blocks():
     # 4 x 4 blocks of a 40 x 40 image: plain block means, rounded half up, except that
     # GDAL's incremental mean may land a hair below an exact half (x.5 -> x)
     image = noise((40, 40), "int16", seed=15)
-    got = warp(image, affine.Affine.scale(4.0), (10, 10), method="average", nodata=None)
+    got = warp(image, affine.Affine.scale(4.0), (10, 10), method="average", dst_nodata=None)
     mean = image.astype(float).reshape(10, 4, 10, 4).mean(axis=(1, 3))
     half = mean - np.floor(mean) == 0.5
     np.testing.assert_array_equal(got[~half], np.floor(mean + 0.5)[~half])
@@ -701,7 +701,7 @@ def test_an_enlargement_by_2_5_matches_gdal_on_every_tie(method, nodata, dtype):
     dst_transform, shape = TIE_GRID
     expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), dst_transform, shape, method,
                          nodata)
-    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method=method, nodata=nodata)
+    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method=method, dst_nodata=nodata)
     assert np.count_nonzero(got != expected) == 0
 
 
@@ -731,10 +731,11 @@ def test_gdalwarp_s_default_transformer_rounds_some_ties_the_other_way(nodata):
     # in the last bits. rsgeo follows the exact transformer; the two differ only on .5 ties.
     image = noise((200, 300), seed=0)
     dst_transform, shape = TIE_GRID
-    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method="bilinear", nodata=nodata)
+    got = warp(image, ~SOURCE_TRANSFORM, shape, dst_transform, method="bilinear",
+               dst_nodata=nodata)
     default = _default_gdalwarp(image, SOURCE_TRANSFORM, dst_transform, shape, "bilinear", nodata)
     exact = warp(image.astype(np.float64), ~SOURCE_TRANSFORM, shape, dst_transform,
-                 method="bilinear", nodata=None)
+                 method="bilinear", dst_nodata=None)
     differ = got != default
     assert 0.001 * got.size < np.count_nonzero(differ) < 0.01 * got.size
     assert (np.abs(got.astype(int) - default) <= 1).all()
@@ -754,7 +755,7 @@ def test_gdalwarp_widens_its_kernels_per_chunk_on_a_rotated_footprint(method):
     rotated = SOURCE_TRANSFORM @ affine.Affine.rotation(13)
     dst_transform, shape = suggested_grid(image.shape, rotated, resolution=10.0)
     assert min(grid_scale(~rotated, shape, dst_transform, image.shape)) > 1
-    got = warp(image, ~rotated, shape, dst_transform, method=method, nodata=0)
+    got = warp(image, ~rotated, shape, dst_transform, method=method, dst_nodata=0)
     valid = got != 0
     vrt = gdal_warp(image, affine_source(rotated), dst_transform, shape, method, 0)
     assert np.count_nonzero(got != vrt) == 0
@@ -765,7 +766,7 @@ def test_gdalwarp_widens_its_kernels_per_chunk_on_a_rotated_footprint(method):
     assert np.count_nonzero(got != fixed) == 0
 
 
-# -- issue 26: 64-bit images, a source nodata, clear errors, big outputs ------
+# -- 64-bit images, a source nodata, clear errors, big outputs ------
 
 from rsgeo.errors import GridError, ImageError  # noqa: E402
 from rsgeo.validation import as_affine, as_output_shape  # noqa: E402
@@ -779,7 +780,7 @@ _ROTATED = (affine.Affine.translation(500_003.0, 7_399_997.0) @ affine.Affine.ro
                                               ("int64", -5, 1000), ("uint64", 0, 1000)])
 @pytest.mark.parametrize("method", ["bilinear", "cubic"])
 def test_64_bit_step_edges_are_clamped_as_gdal_does(dtype, low, high, method):
-    # issue 26: uint64 cubic undershoots wrapped to 2**64 - 1 (no clamp at itemsize 8);
+    # uint64 cubic undershoots wrapped to 2**64 - 1 (no clamp at itemsize 8);
     # GDAL 3.10.3 clamps to the dtype's range after floor(v + 0.5)
     image = np.full((24, 24), low, dtype)
     image[:, 12:] = high
@@ -787,7 +788,8 @@ def test_64_bit_step_edges_are_clamped_as_gdal_does(dtype, low, high, method):
     for nodata in (None, 7):
         expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), _ROTATED, (60, 60), method,
                              nodata, plain_kernels=True)
-        got = warp(image, ~SOURCE_TRANSFORM, (60, 60), _ROTATED, method, nodata, scale=1)
+        got = warp(image, ~SOURCE_TRANSFORM, (60, 60), _ROTATED, method=method, dst_nodata=nodata,
+                   scale=1)
         np.testing.assert_array_equal(got, expected)
     assert got.min() >= low if dtype == "uint64" else True
 
@@ -840,7 +842,7 @@ def test_src_nodata_matches_gdal_srcnodata(method, dtype, hole, bands):
     for nodata in (255, None):
         expected = gdal_warp(image, affine_source(SOURCE_TRANSFORM), _ROTATED, (60, 60), method,
                              nodata, plain_kernels=method != "average", src_nodata=float(hole))
-        got = warp(image, ~SOURCE_TRANSFORM, (60, 60), _ROTATED, method, nodata,
+        got = warp(image, ~SOURCE_TRANSFORM, (60, 60), _ROTATED, method=method, dst_nodata=nodata,
                    scale=1 if method != "average" else None, src_nodata=hole)
         np.testing.assert_array_equal(got, expected)
 
@@ -890,9 +892,9 @@ def test_a_mapping_that_is_not_a_model_is_a_type_error(mapping, message):
 def test_transform_must_be_a_finite_affine():
     image = np.ones((4, 4), np.uint8)
     with pytest.raises(TypeError, match=r"transform must be an affine.Affine.*from_gdal"):
-        warp(image, lambda xy: xy, (4, 4), transform=(0.0, 1.0, 0.0, 4.0, 0.0, -1.0))
+        warp(image, lambda xy: xy, (4, 4), dst_transform=(0.0, 1.0, 0.0, 4.0, 0.0, -1.0))
     with pytest.raises(GridError, match="transform holds NaN"):
-        warp(image, lambda xy: xy, (4, 4), transform=affine.Affine(np.nan, 0, 0, 0, -1, 4))
+        warp(image, lambda xy: xy, (4, 4), dst_transform=affine.Affine(np.nan, 0, 0, 0, -1, 4))
     with pytest.raises(GridError, match="mapping holds NaN"):
         warp(image, affine.Affine(np.nan, 0, 0, 0, 1, 0), (4, 4))
     assert as_affine(affine.Affine.identity()) == affine.Affine.identity()
@@ -908,7 +910,6 @@ def test_an_output_too_big_for_memory_is_refused_before_allocating():
 
 @pytest.mark.parametrize("dtype", [np.float16, ">f4", ">u2"])
 def test_float16_and_big_endian_are_converted_once_not_per_strip(dtype, monkeypatch):
-    from rsgeo import resample
 
     image = noise((20, 20), "float32" if np.dtype(dtype).kind == "f" else "uint16",
                   seed=3).astype(dtype)
@@ -919,7 +920,7 @@ def test_float16_and_big_endian_are_converted_once_not_per_strip(dtype, monkeypa
         seen.append(bands.dtype)
         return original(bands, *args, **kwargs)
 
-    monkeypatch.setattr(resample, "_resample", spy)
+    monkeypatch.setattr(_warp, "resample_pixels", spy)
     out = warp(image, lambda xy: xy + 0.25, (20, 20), method="bilinear", strip_rows=4)
     assert len(seen) == 5 and all(d.isnative and d != np.float16 for d in seen)
     assert out.dtype == np.dtype(dtype)

@@ -412,7 +412,7 @@ def test_olinda_terrain_is_shipped_with_its_stated_metadata():
         data.load("olinda")
 
 
-# -- issue 26: transforms as rsgeo.data.save reads them, CRSs, output size, strips -------------
+# -- transforms as rsgeo.data.save reads them, CRSs, output size, strips -------------
 
 def test_orthorectify_reads_a_gdal_tuple_and_refuses_one_in_affine_order(scene):
     # an Affine-order tuple read as GDAL's put the DEM's heights 275 m off without a word
@@ -490,7 +490,7 @@ def test_orthorectify_strips_count_dem_problems_over_the_whole_grid(scene):
                          dem_vertical="ellipsoidal")
 
 
-# -- issue 27: the RPC and the DEM in one compiled pass, PROJ on the arrays --------------------
+# -- the RPC and the DEM in one compiled pass, PROJ on the arrays --------------------
 
 def _rpc_in_numpy(rpc, lon, lat, height):
     """GDAL's RPCTransformPoint written out in NumPy, operation by operation (the reference
@@ -602,7 +602,7 @@ def test_orthorectify_grid_and_dem_in_utm_against_gdal(scene):
         assert np.count_nonzero(ours != gdal) == 0
 
 
-# -- issue 28: the DEM's vertical datum (geoid) ---------------------------------
+# -- the DEM's vertical datum (geoid) ---------------------------------
 
 def _column_ramp(n=520):
     """An image whose bilinear value at (col, row) is col: an orthoimage of it holds the raw
@@ -696,7 +696,7 @@ def test_orthorectify_egm96_is_n_at_each_point_as_gdal_applies_it(scene):
     assert np.abs(ours - col).max() < 1e-4
 
 
-# -- issue 28: occlusion behind buildings and canopy ----------------------------
+# -- occlusion behind buildings and canopy ----------------------------
 
 def test_occluded_is_what_a_line_of_sight_through_the_profile_finds():
     from rsgeo.relief import occluded
@@ -739,7 +739,7 @@ def test_occluded_ground_behind_a_building_is_h_tan_theta_long():
         occluded(d, h[:-1], 30.0)
 
 
-# -- issue 28: exercise 4b.4, forgetting the geoid ------------------------------
+# -- exercise 4b.4, forgetting the geoid ------------------------------
 
 GEOID_TASK = dict(geoid_undulation_m=24.47, view_zenith_deg=20.0, pixel_m=5.0)  # Rio Branco
 

@@ -48,7 +48,9 @@ SIZES = {"cbers14": cbers, "random200": lambda: utm_gcps(200, 7),
          "random2000": lambda: utm_gcps(2000, 8)}
 
 
-@pytest.fixture(scope="module", params=list(SIZES))
+# the 2,000-GCP splines take most of this module's time: the fast suite leaves them out
+@pytest.fixture(scope="module", params=[pytest.param(name, marks=pytest.mark.slow)
+                                        if name == "random2000" else name for name in SIZES])
 def splines(request):
     image_xy, map_xy = SIZES[request.param]()
     return image_xy, map_xy, thin_plate.solve(image_xy, map_xy), thin_plate.solve(map_xy, image_xy)
@@ -158,6 +160,7 @@ def test_tps_model_evaluates_the_packed_spline():
     assert np.array_equal(inverse(points), gdal_spline_inverse(image_xy, map_xy, points))
 
 
+@pytest.mark.slow
 def test_tps_inverse_on_two_thousand_gcps_meets_gdal_autotests_bound():
     # GDAL autotest alg/transformer.py test_transformer_tps_precision: 2,115 GCPs, the spline
     # image -> map within 1e-3 map units of every GCP (its GCP file is not public: synthetic,
@@ -196,8 +199,8 @@ def test_warp_through_the_spline_is_gdalwarps_pixel_for_pixel(n_gcps, method):
     # gdalwarp fits the spline image -> map and inverts it at every output cell
     model = transforms.fit_transform(image_xy, map_xy, "tps").inverse()
     # compiled inside the warp kernel (the inverse's kernel_form) ...
-    assert np.array_equal(warp(image, model, shape, dst_transform, method=method, nodata=0),
+    assert np.array_equal(warp(image, model, shape, dst_transform, method=method, dst_nodata=0),
                           expected)
     # ... and evaluated point by point as any Python mapping
     assert np.array_equal(warp(image, lambda points: model(points), shape, dst_transform,
-                               method=method, nodata=0), expected)
+                               method=method, dst_nodata=0), expected)

@@ -1,10 +1,11 @@
-"""rsgeo.registration: automatic tie points by correlation and by features (issue 18)."""
+"""rsgeo.registration: automatic tie points by correlation and by features."""
 
 import affine
 import numpy as np
 import pytest
 
 from rsgeo import accuracy, data, gcp, registration, resample, synthetic
+from rsgeo.registration import _bands
 from rsgeo.registration import _tiepoints as tiepoints
 
 
@@ -48,7 +49,7 @@ def test_correlation_recovers_a_pure_translation_with_the_right_sign(land):
     image = land.reference.astype(float)
     shift = np.array([2.3, -1.7])                     # moving(c, r) = image(c - 2.3, r + 1.7)
     moving = resample.warp(image, affine.Affine.translation(*-shift), image.shape,
-                           method="cubic", nodata=0)
+                           method="cubic", dst_nodata=0)
     valid = np.zeros(image.shape, bool)
     valid[20:-20, 20:-20] = True
     medians = {}
@@ -300,11 +301,11 @@ def _smooth_scene(sigma, size=200, seed=0):
 
 @pytest.mark.parametrize("sigma", [2, 4, 8])
 def test_smooth_windows_are_rejected_not_called_reliable_while_pixels_off(sigma):
-    # issue 26: plain phase correlation on a smooth scene is pulled towards zero shift by the
+    # plain phase correlation on a smooth scene is pulled towards zero shift by the
     # windows' cut edges; 16 of 16 windows were "reliable" while up to 2.3 px off
     image, shift = _smooth_scene(sigma), np.array([2.3, -1.7])
     moving = resample.warp(image, affine.Affine.translation(*-shift), image.shape,
-                           method="cubic", nodata=0)
+                           method="cubic", dst_nodata=0)
     valid = np.zeros(image.shape, bool)
     valid[10:-10, 10:-10] = True
     with pytest.raises(ValueError, match=r"\d+ smooth\).*use taper=True"):
@@ -338,7 +339,7 @@ def test_edge_share_separates_textured_from_smooth_windows(ccd_hrc):
     ({"min_contrast": np.nan}, ValueError, "min_contrast must be a finite number"),
     ({"min_contrast": "2"}, TypeError, "min_contrast must be a number"),
     ({"min_reliability": np.nan}, ValueError, "min_reliability must be a finite number"),
-    # issue 26: a negative threshold was accepted (it keeps every window, like 0, unsaid)
+    # a negative threshold was accepted (it keeps every window, like 0, unsaid)
     ({"min_reliability": -1}, ValueError,
      r"min_reliability must be >= 0 \(a peak height in standard deviations; 0 keeps every "
      r"window\), got -1"),
@@ -379,7 +380,7 @@ def test_correlation_tiepoints_seed_spacing_and_upsample_are_whole_numbers(kwarg
         registration.correlation_tiepoints(image, image, **arguments)
 
 
-# Band-to-band registration (issue 28): bands of one scene with known sub-pixel shifts.
+# Band-to-band registration: bands of one scene with known sub-pixel shifts.
 BAND_SHIFTS = [(0.0, 0.0), (0.3, -0.2), (-0.45, 0.15), (0.12, 0.37)]    # (dx, dy) px per band
 BAND_GAINS = [1.0, -1.0, "partial", 1.4]           # kept, inverted, partly inverted, stretched
 BAND_PAIRS = [(i, j) for i in range(4) for j in range(i + 1, 4)]
@@ -463,9 +464,9 @@ def test_band_misregistration_moves_bands_exactly_not_by_cubic_convolution(shift
 
     def cubic(image, dx, dy, pad):
         return resample.warp(image, affine.Affine.translation(-dx, -dy), image.shape,
-                             method="cubic", nodata=None)
+                             method="cubic", dst_nodata=None)
 
-    monkeypatch.setattr(tiepoints, "_fourier_shift", cubic)
+    monkeypatch.setattr(_bands, "_fourier_shift", cubic)
     convolved = _band_errors(registration.band_misregistration(bands), kept_and_inverted).max()
     assert exact < 0.01 and convolved > 0.02
 

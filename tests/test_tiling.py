@@ -49,14 +49,8 @@ def mapping_of(kind):
 
 
 def one_shot(image, mapping, shape, transform, method, kind, **options):
-    """warp over the whole grid; skips TPS while the kernels cannot evaluate it yet."""
-    try:
-        return warp(image, mapping, shape, transform, method=method, **options)
-    except GridError:
-        if kind == "tps":
-            pytest.skip("warp with a TPSModel lands nowhere: TPS is not wired into the "
-                        "kernels yet (rsgeo._kernels.transformer.to_source)")
-        raise
+    """warp over the whole grid, in one call."""
+    return warp(image, mapping, shape, transform, method=method, **options)
 
 
 def window_kinds(mapping, shape, transform, tile_shape, method, scale):
@@ -81,7 +75,7 @@ def window_kinds(mapping, shape, transform, tile_shape, method, scale):
 def test_tiles_equal_one_warp(kind, method):
     image, mapping = mapping_of(kind)
     whole = one_shot(image, mapping, GRID_SHAPE, GRID, method, kind)
-    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, method=method)
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape=TILE, method=method)
     assert tiled.dtype == whole.dtype
     assert np.count_nonzero(tiled != whole) == 0
     # the grid has tiles of every kind: all nodata, cut by the source's edges, inside
@@ -96,7 +90,7 @@ def test_downsampled_tiles_equal_one_warp(kind, method):
     scale = grid_scale(mapping, COARSE_SHAPE, COARSE_GRID, SOURCE_SHAPE)
     assert max(scale) < 0.95            # bilinear and cubic are widened over 1/scale pixels
     whole = one_shot(image, mapping, COARSE_SHAPE, COARSE_GRID, method, kind)
-    tiled = resample.warp_tiled(image, mapping, COARSE_SHAPE, COARSE_GRID, (40, 48),
+    tiled = resample.warp_tiled(image, mapping, COARSE_SHAPE, COARSE_GRID, tile_shape=(40, 48),
                               method=method)
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -106,9 +100,10 @@ def test_float_bands_and_no_destination_nodata(method):
     # float32 (every last bit shows) with two bands, gdalwarp without -dstnodata
     _, mapping = mapping_of("polynomial 2")
     image = np.stack([noise(SOURCE_SHAPE, "float32", seed) for seed in (1, 2)])
-    whole = warp(image, mapping, GRID_SHAPE, GRID, method=method, nodata=None)
-    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, (50, 70), method=method,
-                              nodata=None)
+    whole = warp(image, mapping, GRID_SHAPE, GRID, method=method, dst_nodata=None)
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape=(50, 70),
+                                method=method,
+                              dst_nodata=None)
     assert tiled.shape == (2,) + GRID_SHAPE
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -118,7 +113,8 @@ def test_source_nodata_is_respected_as_in_one_warp():
     image = noise(SOURCE_SHAPE, "uint8", 4)
     image[100:180, 90:200] = 7
     whole = warp(image, mapping, GRID_SHAPE, GRID, method="bilinear", src_nodata=7)
-    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, method="bilinear",
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape=TILE,
+                                method="bilinear",
                               src_nodata=7)
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -131,7 +127,7 @@ def test_approximated_tiles_as_wide_as_the_grid_equal_one_approximated_warp():
     whole = warp(image, model, GRID_SHAPE, GRID, method="bilinear", error_threshold=0.125)
     exact = warp(image, model, GRID_SHAPE, GRID, method="bilinear")
     assert np.count_nonzero(whole != exact) > 0          # the approximation did something
-    tiled = resample.warp_tiled(image, model, GRID_SHAPE, GRID, (64, GRID_SHAPE[1]),
+    tiled = resample.warp_tiled(image, model, GRID_SHAPE, GRID, tile_shape=(64, GRID_SHAPE[1]),
                               method="bilinear", error_threshold=0.125)
     assert np.count_nonzero(tiled != whole) == 0
 
@@ -143,7 +139,8 @@ def test_tiles_of_a_grid_that_does_not_add_up_in_binary():
     image = noise(SOURCE_SHAPE, "float32", 6)
     grid = affine.Affine(7.123456789, 0.3, 599_300.37, 0.2, -7.123456789, 7_300_140.91)
     whole = warp(image, mapping, GRID_SHAPE, grid, method="bilinear")
-    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, grid, TILE, method="bilinear")
+    tiled = resample.warp_tiled(image, mapping, GRID_SHAPE, grid, tile_shape=TILE,
+                                method="bilinear")
     assert np.count_nonzero(tiled != whole) == 0
 
 
@@ -225,7 +222,7 @@ def test_a_file_is_read_window_by_window_and_written_tile_by_tile(tmp_path):
             height=GRID_SHAPE[0], count=2, dtype="uint8", transform=GRID, tiled=True,
             blockxsize=128, blockysize=128) as out:
         recorder = ReadRecorder(dataset)
-        returned = resample.warp_tiled(recorder, mapping, GRID_SHAPE, GRID, TILE,
+        returned = resample.warp_tiled(recorder, mapping, GRID_SHAPE, GRID, tile_shape=TILE,
                                      method="cubic", out=out)
         assert returned is out
     with rasterio.open(tmp_path / "out.tif") as written:
@@ -238,7 +235,8 @@ def test_a_file_is_read_window_by_window_and_written_tile_by_tile(tmp_path):
 def test_a_path_source_gives_a_2d_array_for_one_band(tmp_path):
     image, mapping = mapping_of("affine")
     source = write_raster(tmp_path / "source.tif", image)
-    tiled = resample.warp_tiled(source, mapping, GRID_SHAPE, GRID, TILE, method="bilinear")
+    tiled = resample.warp_tiled(source, mapping, GRID_SHAPE, GRID, tile_shape=TILE,
+                                method="bilinear")
     whole = warp(image, mapping, GRID_SHAPE, GRID, method="bilinear")
     assert tiled.shape == GRID_SHAPE
     assert np.count_nonzero(tiled != whole) == 0
@@ -247,7 +245,7 @@ def test_a_path_source_gives_a_2d_array_for_one_band(tmp_path):
 def test_into_a_given_array():
     image, mapping = mapping_of("affine")
     out = np.full(GRID_SHAPE, 9, dtype=np.uint8)
-    returned = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, TILE, out=out)
+    returned = resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape=TILE, out=out)
     assert returned is out
     assert np.count_nonzero(out != warp(image, mapping, GRID_SHAPE, GRID)) == 0
 
@@ -261,7 +259,7 @@ def test_dask_with_one_and_two_workers_equals_one_warp(tmp_path, method, workers
     dask = pytest.importorskip("dask")
     image, mapping = mapping_of("polynomial 2")
     source = write_raster(tmp_path / "source.tif", image)
-    array = resample.warp_dask(source, mapping, GRID_SHAPE, GRID, TILE, method=method)
+    array = resample.warp_dask(source, mapping, GRID_SHAPE, GRID, tile_shape=TILE, method=method)
     assert array.chunks[0][0] == TILE[0] and array.chunks[1][0] == TILE[1]
     with dask.config.set(scheduler="threads", num_workers=workers):
         tiled = array.compute()
@@ -275,7 +273,8 @@ def test_dask_processes_equal_one_warp(tmp_path):
     image, mapping = mapping_of("affine")
     image = np.stack([image, 255 - image])
     source = write_raster(tmp_path / "source.tif", image)
-    array = resample.warp_dask(source, mapping, GRID_SHAPE, GRID, (300, 330), method="bilinear")
+    array = resample.warp_dask(source, mapping, GRID_SHAPE, GRID, tile_shape=(300, 330),
+                               method="bilinear")
     with dask.config.set(scheduler="processes", num_workers=2):
         tiled = array.compute()
     whole = warp(image, mapping, GRID_SHAPE, GRID, method="bilinear")
@@ -312,7 +311,7 @@ def test_tiles_of_orthorectify_equal_one_orthorectify():
 def test_a_tile_shape_must_be_two_positive_integers(tile_shape):
     image, mapping = mapping_of("affine")
     with pytest.raises(GridError, match="tile_shape"):
-        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape)
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, tile_shape=tile_shape)
     with pytest.raises(GridError, match="tile_shape"):
         resample.tiles(GRID_SHAPE, GRID, tile_shape)
 
@@ -340,10 +339,10 @@ def test_a_grid_that_lands_nowhere_is_refused(tmp_path):
     image, mapping = mapping_of("affine")
     # the raster's own geotransform (image -> map) instead of its inverse
     with pytest.raises(GridError, match="no output cell lands"):
-        resample.warp_tiled(image, ROTATED_SOURCE, GRID_SHAPE, GRID, TILE)
+        resample.warp_tiled(image, ROTATED_SOURCE, GRID_SHAPE, GRID, tile_shape=TILE)
     source = write_raster(tmp_path / "source.tif", image)
     with pytest.raises(GridError, match="no output cell lands"):
-        resample.warp_dask(source, ROTATED_SOURCE, GRID_SHAPE, GRID, TILE)
+        resample.warp_dask(source, ROTATED_SOURCE, GRID_SHAPE, GRID, tile_shape=TILE)
 
 
 def test_other_arguments_are_checked_before_any_tile():
@@ -351,7 +350,7 @@ def test_other_arguments_are_checked_before_any_tile():
     with pytest.raises(RsgeoError, match="method"):
         resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, method="lanczos")
     with pytest.raises(ImageError, match="nodata"):
-        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, nodata=300)
+        resample.warp_tiled(image, mapping, GRID_SHAPE, GRID, dst_nodata=300)
     with pytest.raises(TypeError, match="mapping"):
         resample.warp_tiled(image, "north up", GRID_SHAPE, GRID)
     with pytest.raises(TypeError, match="affine.Affine"):

@@ -69,10 +69,10 @@ def test_approximated_warp_matches_gdal_s_approximate_transformer(method, order,
     # one VRT block for the whole grid: GDAL approximates each row over the grid's width
     expected = gdal_warp(image, gcp_source(image_xy, map_xy, order), DST_TRANSFORM, SHAPE,
                          method, 0, plain_kernels=True, block=SHAPE[1], max_error=max_error)
-    got = warp(image, model, SHAPE, DST_TRANSFORM, method=method, nodata=0, scale=1.0,
+    got = warp(image, model, SHAPE, DST_TRANSFORM, method=method, dst_nodata=0, scale=1.0,
                error_threshold=max_error)
     assert np.count_nonzero(got != expected) == 0
-    exact = warp(image, model, SHAPE, DST_TRANSFORM, method=method, nodata=0, scale=1.0)
+    exact = warp(image, model, SHAPE, DST_TRANSFORM, method=method, dst_nodata=0, scale=1.0)
     # and the approximation did something: GDAL's own warps differ too
     if order > 1:
         assert np.count_nonzero(exact != expected) > 0
@@ -154,6 +154,6 @@ def test_approximated_tps_warp_matches_gdal_s_approximate_transformer(method, n_
     model = transforms.fit_transform(image_xy, map_xy, "tps").inverse()
     expected = gdal_warp(image, tps_source(image_xy, map_xy), dst_transform, SHAPE, method, 0,
                          plain_kernels=True, block=SHAPE[1], max_error=0.125)
-    got = warp(image, model, SHAPE, dst_transform, method=method, nodata=0, scale=1.0,
+    got = warp(image, model, SHAPE, dst_transform, method=method, dst_nodata=0, scale=1.0,
                error_threshold=0.125)
     assert np.count_nonzero(got != expected) == 0

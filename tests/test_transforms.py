@@ -81,13 +81,13 @@ def test_tps_warp_matches_gdalwarp_tps_bit_for_bit():
     model = transforms.fit_transform(image_xy, map_xy, "tps").inverse()
     for method in ("nearest", "bilinear", "cubic"):
         expected = gdal_warp(image, source, dst_transform, shape, method, 0)
-        got = warp(image, model, shape, dst_transform, method=method, nodata=0)
+        got = warp(image, model, shape, dst_transform, method=method, dst_nodata=0)
         assert np.count_nonzero(expected) > shape[0] * shape[1] // 4
         assert np.array_equal(got, expected)
     # the reverse spline (what rasterio's GCPTransformer gives map -> image) is NOT what
     # gdalwarp uses: it is off by up to a tenth of a pixel between the GCPs
     reverse = transforms.fit_transform(map_xy, image_xy, "tps")
-    assert np.count_nonzero(warp(image, reverse, shape, dst_transform, nodata=0)
+    assert np.count_nonzero(warp(image, reverse, shape, dst_transform, dst_nodata=0)
                             != gdal_warp(image, source, dst_transform, shape, "nearest", 0)) > 100
 
 
@@ -498,7 +498,7 @@ def test_polynomial_and_spline_share_one_newton_inverse():
         transforms.fit_polynomial(src, folded, 2).inverse()([[-1.0, 0.0]])
 
 
-# --- Issue 26: bad and extreme GCPs ---
+# --- bad and extreme GCPs ---
 
 
 def test_tps_skips_exact_duplicates_as_gdal_does():
@@ -521,6 +521,7 @@ def test_tps_refuses_near_duplicates_with_different_targets():
         transforms.fit_transform(map_xy, image_xy, "tps")
 
 
+@pytest.mark.slow
 def test_tps_inverse_converges_on_two_thousand_noisy_gcps():
     # GDAL autotest transformer.py, test_transformer_tps_precision (2,115 GCPs), made synthetic:
     # the spline through 2,000 noisy GCPs cannot be evaluated to 1e-10 of its extent

@@ -207,7 +207,7 @@ def resample_pixels(image, method, nodata, num_threads, cols, rows, packed, size
     arrays ``cols``, ``rows`` (``packed`` is ``POSITIONS_GIVEN``) or are
     computed row by row by the packed transformer (:mod:`rsgeo._kernels.transformer`)
     for an output grid ``row_length`` pixels wide. ``valid``:
-    the source validity mask (:func:`_validity`), or None for none.
+    the source validity mask (``_validity``), or None for none.
     """
     bands = image if image.ndim == 3 else image[np.newaxis]
     dtype = bands.dtype

@@ -12,7 +12,14 @@ from ..language import N_, _
 from ..transforms import GEOREFERENCER_MODELS, PolynomialModel, fit_transform, registered
 from ..transforms._base import rms_of, same_points
 from ..transforms._polynomial import normalised_design
-from ..validation import as_integer, as_invertible_affine, as_number, as_points, as_shape
+from ..validation import as_flags, as_integer, as_invertible_affine, as_number, as_points, as_shape
+
+__all__ = [
+    "residuals", "rms_error", "mean_error", "leave_one_out_errors",
+    "leave_one_out_residuals", "fit_with_check_points", "refine_gcps",
+    "coefficient_standard_errors", "condition_number", "hull_coverage", "predicted_error_map",
+    "compare_models", "GeotransformCheck", "compare_with_geotransform",
+]
 
 
 def _pair(src, dst):
@@ -37,24 +44,6 @@ def _predicted_observed(predicted, observed, per_gcp=False):
                           "{predicted_shape} and {observed_shape}")).format(
                 predicted_shape=predicted.shape, observed_shape=observed.shape))
     return predicted, observed
-
-
-def as_flags(flags, name):
-    """``flags`` as a bool array; only booleans or 0/1 (0.5 or NaN would read as True)."""
-    array = np.asarray(flags)
-    if array.dtype != bool:
-        try:
-            numbers = array.astype(np.float64)
-        except (TypeError, ValueError):
-            raise GCPError(_("{name} must hold True/False (or 1/0) flags, got {flags!r}").format(
-                    name=name, flags=flags)) from None
-        if not np.isin(numbers, (0.0, 1.0)).all():
-            raise GCPError(_("{name} must hold True/False (or 1/0) flags, got values "
-                             "{tolist}").format(
-                    name=name,
-                    tolist=np.unique(numbers[~np.isin(numbers, (0.0, 1.0))])[:5].tolist()))
-        array = numbers.astype(bool)
-    return array
 
 
 # --- Residuals and RMS ---------------------------------------------------------------------------
@@ -226,7 +215,7 @@ def leave_one_out_residuals(src, dst, order, kind=None):
 
     As :func:`leave_one_out_errors`, whose distances are the lengths of these
     vectors; the two components are what an accuracy standard reports per
-    axis (ASPRS's RMSE_x and RMSE_y, :func:`asprs_horizontal`). Fitted image ->
+    axis (ASPRS's RMSE_x and RMSE_y, :func:`~rsgeo.accuracy.asprs_horizontal`). Fitted image ->
     map, they are the check-point discrepancies on the ground, in map units.
 
     Parameters

@@ -10,6 +10,13 @@ from ..errors import GCPError
 from ..language import N_, _
 from ..validation import as_number, as_points, check_choice
 
+__all__ = [
+    "MAP_SCALES", "PEC_CLASSES", "LE90_FACTOR", "VERTICAL_95_FACTOR", "CE90_FACTOR",
+    "CE90_RADIAL_FACTOR", "NSSDA_95_FACTOR", "NSSDA_95_RADIAL_FACTOR", "pec_thresholds",
+    "PECResult", "classify", "largest_scale", "HorizontalAccuracy", "asprs_horizontal",
+    "VerticalAccuracy", "asprs_vertical",
+]
+
 # --- Accuracy standards --------------------------------------------------------------------------
 
 #: The map scales (denominators) of Brazil's mapping series, the columns of the PEC-PCD's

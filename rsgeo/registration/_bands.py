@@ -46,14 +46,14 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
       window pull the peak in opposite directions; an edge's gradient
       magnitude is the same whichever side is bright. The gradient also
       removes the smooth part of the scene, whose windows' cut edges pull
-      phase correlation towards zero shift (:func:`edge_share`).
-    * Iterations as :func:`correlation_tiepoints` does them, but for a
+      phase correlation towards zero shift (:func:`~rsgeo.registration.edge_share`).
+    * Iterations as :func:`~rsgeo.registration.correlation_tiepoints` does them, but for a
       translation only and with an exact shift: the moving band is moved back
       by the current estimate with the Fourier shift theorem (mirrored at its
       borders), its feature recomputed and the windows correlated again, until
       the mean shift left is under half the sub-pixel step. On the test bands
       this recovers every pair's shift to better than 0.02 px; moving the band
-      by cubic convolution instead (what :func:`correlation_tiepoints`
+      by cubic convolution instead (what :func:`~rsgeo.registration.correlation_tiepoints`
       resamples with) leaves errors of 0.03 to 0.04 px.
 
     Window shifts are quantised to 1 / ``upsample`` pixel, so a spread or a
@@ -62,7 +62,7 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
     A window is not used when it is skipped by :func:`measure_shifts`
     ("constant", "invalid"), its correlation peak is weak ("weak peak", below
     ``min_reliability``), it is too smooth for phase correlation ("smooth",
-    :func:`edge_share` over ``max_edge_share``), or its shift is more than
+    :func:`~rsgeo.registration.edge_share` over ``max_edge_share``), or its shift is more than
     ``tolerance`` pixels from the median of the others in either direction
     ("outlier").
 
@@ -88,7 +88,7 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
         Smallest height of a window's correlation peak above the rest of the
         correlation surface, in its standard deviations.
     max_edge_share : float
-        Largest :func:`edge_share` of a window pair, 0 to 1.
+        Largest :func:`~rsgeo.registration.edge_share` of a window pair, 0 to 1.
     tolerance : float
         Largest distance of a window's shift from the pair's median, pixels.
     valid : (rows, cols) array_like of bool, optional

@@ -27,7 +27,8 @@ __all__ = [
 
 @dataclass
 class Registration:
-    """A registration's result: :func:`register`'s or :func:`register_by_regions`'s.
+    """A registration's result: :func:`register`'s or
+    :func:`~rsgeo.registration.register_by_regions`'s.
 
     Attributes
     ----------
@@ -211,7 +212,7 @@ def coarsen(image, transform, factor):
 
 def perturb_transform(transform, shift=(0.0, 0.0), degrees=0.0, centre=None):
     """A geotransform moved by ``shift`` and turned by ``degrees`` about ``centre``: an approximate
-    georeferencing, as a first estimate for :func:`correlation_tiepoints`.
+    georeferencing, as a first estimate for :func:`~rsgeo.registration.correlation_tiepoints`.
 
     Parameters
     ----------

@@ -647,7 +647,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     for _pass in range(iterations):
         try:
             resampled = resample.warp(moving, estimate, reference.shape, transform,
-                                      method=method, nodata=np.nan)
+                                      method=method, dst_nodata=np.nan)
         except ValueError as error:
             if "lands inside" not in str(error):
                 raise

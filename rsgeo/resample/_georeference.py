@@ -84,7 +84,7 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
     with the source's pixel size unless ``resolution`` is given. The datum
     transformation is :func:`transform_points`' (IBGE's grid from SAD69 to
     SIRGAS 2000 where it applies), named in the result's description;
-    ``gdalwarp -ct`` with its ``pipeline`` (:func:`transformations`) gives GDAL
+    ``gdalwarp -ct`` with its ``pipeline`` (:func:`~rsgeo.crs.transformations`) gives GDAL
     the same one.
 
     Parameters
@@ -137,7 +137,7 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
     transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_dst, resolution=size)
     as_output_shape(shape, raster.array.dtype, _bands(raster.array), "shape")
     mapping = CRSMapping(~raster.transform, src_crs, dst, transformation)
-    array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
+    array = warp(raster.array, mapping, shape, transform, method=method, dst_nodata=nodata)
     rows, cols = raster.array.shape[-2:]
     named = transformation_at(np.array([raster.transform @ (cols / 2, rows / 2)]), src_crs, dst,
                           transformation)
@@ -323,7 +323,7 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     # gdalwarp's suggested output grid (GDALSuggestedWarpOutput2; -tr when a resolution is given)
     transform, shape = suggested_grid(raster.array.shape[-2:], pixel_to_map, resolution=resolution)
     as_output_shape(shape, raster.array.dtype, _bands(raster.array), "shape")
-    array = warp(raster.array, mapping, shape, transform, method=method, nodata=nodata)
+    array = warp(raster.array, mapping, shape, transform, method=method, dst_nodata=nodata)
     return Raster(array, transform, src_crs, nodata,
                   f"{raster.name or 'image'} georeferenced: {kind}"
                   f"{f' order {order}' if order is not None else ''}, {method}",

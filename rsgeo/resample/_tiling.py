@@ -46,7 +46,7 @@ GCPs, takes gdalwarp's suggested grid and warps. For a scene larger than
 memory, make the same three steps with the tiled warp::
 
     import rasterio
-    from rsgeo import gcp, resample, tiling
+    from rsgeo import gcp, resample
 
     gcps = gcp.read_points("scene.tif.points")
     model = gcps.fit(2)                      # map (x, y) -> image (col, row)
@@ -57,7 +57,7 @@ memory, make the same three steps with the tiled warp::
     with rasterio.open("corrected.tif", "w", driver="GTiff", height=shape[0],
                        width=shape[1], count=1, dtype="uint8", crs=gcps.crs,
                        transform=transform, nodata=0, tiled=True) as out:
-        tiling.warp_tiled("scene.tif", model, shape, transform, method="cubic", out=out)
+        resample.warp_tiled("scene.tif", model, shape, transform, method="cubic", out=out)
 
 (``model.inverse()`` for models without ``reverse``; with another output
 CRS, the mapping is ``rsgeo.resample.CRSMapping(model, gcps.crs, dst_crs)``
@@ -87,6 +87,7 @@ from typing import NamedTuple
 import affine
 import numpy as np
 
+from .._deprecated import renamed_arguments
 from .._kernels.resampling import GDAL_INDEX_EPSILON, RADIUS, WARP_METHODS
 from .._kernels.transformer import pack, positions
 from ..errors import GridError, ImageError
@@ -479,7 +480,7 @@ def _warp_one_tile(source, mapping, grid_transform, tile, method, nodata, scale,
         return np.full(tile_shape, fill, dtype=source.dtype), False, span
     try:
         pixels = warp(source.read(window), mapping, tile.shape, grid_transform, method=method,
-                      nodata=nodata, num_threads=num_threads, scale=scale,
+                      dst_nodata=nodata, num_threads=num_threads, scale=scale,
                       src_nodata=src_nodata, error_threshold=error_threshold,
                       src_offset=(window.col_off, window.row_off),
                       dst_offset=(tile.col, tile.row))
@@ -491,8 +492,12 @@ def _warp_one_tile(source, mapping, grid_transform, tile, method, nodata, scale,
     return pixels, True, span
 
 
-def warp_tiled(source, mapping, shape, transform=None, tile_shape=(1024, 1024),
-               method="nearest", nodata=0, num_threads=1, error_threshold=0.0, out=None,
+@renamed_arguments(
+    ("source", "mapping", "shape", "transform", "tile_shape", "method", "nodata",
+     "num_threads", "error_threshold", "out", "scale", "src_nodata"),
+    {"shape": "dst_shape", "transform": "dst_transform", "nodata": "dst_nodata"})
+def warp_tiled(source, mapping, dst_shape, dst_transform=None, *, tile_shape=(1024, 1024),
+               method="nearest", dst_nodata=0, num_threads=1, error_threshold=0.0, out=None,
                scale=None, src_nodata=None):
     """:func:`rsgeo.resample.warp` made tile by tile, each tile from its own source window.
 
@@ -512,15 +517,15 @@ def warp_tiled(source, mapping, shape, transform=None, tile_shape=(1024, 1024),
         read; a one-band raster reads as a 2-D image.
     mapping : callable or affine.Affine
         Map (x, y) -> source (col, row), as in :func:`rsgeo.resample.warp`.
-    shape : (rows, cols)
+    dst_shape : (rows, cols)
         The whole output grid's size.
-    transform : affine.Affine, optional
+    dst_transform : affine.Affine, optional
         Its geotransform; identity (output pixel coordinates) if omitted.
     tile_shape : (rows, cols)
         Size of a tile; the result does not depend on it.
     method : {"nearest", "bilinear", "cubic", "average"}
         As in :func:`rsgeo.resample.warp`.
-    nodata : number or None
+    dst_nodata : number or None
         As in :func:`rsgeo.resample.warp`.
     num_threads : int
         Threads for each tile's kernel.
@@ -572,6 +577,7 @@ def warp_tiled(source, mapping, shape, transform=None, tile_shape=(1024, 1024),
     >>> int(np.count_nonzero(tiled != whole))
     0
     """
+    shape, transform, nodata = dst_shape, dst_transform, dst_nodata
     shape = as_shape(shape)
     tile_list = tiles(shape, transform, tile_shape)
     check_choice(method, "method", WARP_METHODS)
@@ -661,8 +667,12 @@ def _check_grid_meets_source(mapping, shape, transform, src_shape):
     raise GridError(nothing_lands_message(mapping, spans, width, height))
 
 
-def warp_dask(source_path, mapping, shape, transform=None, tile_shape=(1024, 1024),
-              method="nearest", nodata=0, error_threshold=0.0, scale=None, src_nodata=None):
+@renamed_arguments(
+    ("source_path", "mapping", "shape", "transform", "tile_shape", "method", "nodata",
+     "error_threshold", "scale", "src_nodata"),
+    {"shape": "dst_shape", "transform": "dst_transform", "nodata": "dst_nodata"})
+def warp_dask(source_path, mapping, dst_shape, dst_transform=None, *, tile_shape=(1024, 1024),
+              method="nearest", dst_nodata=0, error_threshold=0.0, scale=None, src_nodata=None):
     """The tiled warp as a Dask array: one block per tile, each reading its own window.
 
     Built with ``dask.array.map_blocks`` over the output tiles; a block
@@ -675,7 +685,8 @@ def warp_dask(source_path, mapping, shape, transform=None, tile_shape=(1024, 102
     module's notes)::
 
         import dask
-        array = warp_dask("scene.tif", model, shape, transform, (1024, 1024), "cubic")
+        array = warp_dask("scene.tif", model, shape, transform, tile_shape=(1024, 1024),
+                          method="cubic")
         with dask.config.set(scheduler="processes", num_workers=2):
             corrected = array.compute()           # or dask.array.to_zarr, array.store(...)
 
@@ -693,15 +704,15 @@ def warp_dask(source_path, mapping, shape, transform=None, tile_shape=(1024, 102
         Map (x, y) -> source (col, row), as in :func:`rsgeo.resample.warp`;
         it must pickle for a process scheduler (rsgeo's models and
         ``affine.Affine`` do; a lambda does not).
-    shape : (rows, cols)
+    dst_shape : (rows, cols)
         The whole output grid's size.
-    transform : affine.Affine, optional
+    dst_transform : affine.Affine, optional
         Its geotransform; identity if omitted.
     tile_shape : (rows, cols)
         Size of a tile: Dask's chunks along rows and columns.
     method : {"nearest", "bilinear", "cubic", "average"}
         As in :func:`rsgeo.resample.warp`.
-    nodata : number or None
+    dst_nodata : number or None
         As in :func:`rsgeo.resample.warp`.
     error_threshold : float
         GDAL's approximation, along each row of a tile (see :func:`warp_tiled`).
@@ -746,6 +757,7 @@ def warp_dask(source_path, mapping, shape, transform=None, tile_shape=(1024, 102
     0
     >>> import shutil; shutil.rmtree(os.path.dirname(path))
     """
+    shape, transform, nodata = dst_shape, dst_transform, dst_nodata
     try:
         import dask.array as da
     except ImportError as error:

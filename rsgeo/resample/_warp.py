@@ -66,6 +66,7 @@ inverse), which would give an image of nothing but nodata, and a bands-last
 import affine  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .._deprecated import renamed_arguments
 from .._kernels.resampling import (
     BLOCK,
     COMPUTED_AS,
@@ -323,9 +324,13 @@ def grid_positions(shape, transform=None, first_row=0, first_col=0):
     return c + cols * a + rows * b, f + cols * d + rows * e
 
 
-def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, strip_rows=256,
-         num_threads=1, scale=None, src_nodata=None, error_threshold=0.0, src_offset=None,
-         dst_offset=None):
+@renamed_arguments(
+    ("image", "mapping", "shape", "transform", "method", "nodata", "strip_rows",
+     "num_threads", "scale", "src_nodata", "error_threshold", "src_offset", "dst_offset"),
+    {"shape": "dst_shape", "transform": "dst_transform", "nodata": "dst_nodata"})
+def warp(image, mapping, dst_shape, dst_transform=None, *, method="nearest", dst_nodata=0,
+         strip_rows=256, num_threads=1, scale=None, src_nodata=None, error_threshold=0.0,
+         src_offset=None, dst_offset=None):
     """The corrected image: every output cell filled from where ``mapping`` sends it.
 
     This is the lecture's "construir uma nova imagem corrigida": the output grid
@@ -349,16 +354,16 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
         (n, 2) array of source (col, row) - a :class:`rsgeo.transforms.PolynomialModel`
         fitted from map to image, or any function; or an ``affine.Affine``
         from map (x, y) to source (col, row), such as ``~source_transform``.
-    shape : (rows, cols)
+    dst_shape : (rows, cols)
         Output grid size.
-    transform : affine.Affine, optional
+    dst_transform : affine.Affine, optional
         Output grid geotransform; if omitted, map coordinates are the output's
         own pixel coordinates.
     method : {"nearest", "bilinear", "cubic", "average"}
         "average" (GDAL's, the method to downsample with): each cell is the
         mean of the source pixels it covers, each weighted by the part of it
         inside the cell (the cell's corners taken to the source).
-    nodata : number or None
+    dst_nodata : number or None
         Value for cells whose source position is outside the image; None for
         gdalwarp's behaviour without a destination nodata (see :func:`interpolate`).
     strip_rows : int
@@ -436,6 +441,7 @@ def warp(image, mapping, shape, transform=None, method="nearest", nodata=0, stri
     >>> warp(image, shift, (4, 4))[0]
     array([1, 2, 3, 0], dtype=uint8)
     """
+    shape, transform, nodata = dst_shape, dst_transform, dst_nodata
     image = as_bands_first(as_image(image))
     check_choice(method, "method", WARP_METHODS)
     nodata = as_nodata(nodata, image.dtype)

@@ -34,7 +34,7 @@ class PushbroomSensor:
     platform's left, since it flies south). A ground point (x, y, h)
     is seen at ``tan(angle) = (x - x_nadir) / (altitude - h)``: its
     displacement from where a point at height 0 would be is h·tan(angle),
-    :func:`relief_displacement`. Earth curvature and attitude changes are
+    :func:`~rsgeo.relief.relief_displacement`. Earth curvature and attitude changes are
     left out (chapter 1 has them).
 
     Parameters

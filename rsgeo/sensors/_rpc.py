@@ -568,7 +568,7 @@ class RefinedRPC:
     (``kind="shift"``: a1 = a2 = b1 = b2 = 0). It has the interface of
     :class:`RPCModel` that places points (:meth:`project`, :meth:`localize`);
     :meth:`to_rpc` turns it into a plain :class:`RPCModel` for
-    :func:`orthorectify` or GDAL.
+    :func:`~rsgeo.ortho.orthorectify` or GDAL.
 
     Parameters
     ----------
@@ -673,7 +673,8 @@ class RefinedRPC:
                                  tolerance, max_iterations)
 
     def to_rpc(self, n=11):
-        """The compensated model as a plain :class:`RPCModel` (for :func:`orthorectify`, GDAL).
+        """The compensated model as a plain :class:`RPCModel` (for GDAL, and for
+        :func:`~rsgeo.ortho.orthorectify`).
 
         A shift is exact: it moves ``SAMP_OFF`` and ``LINE_OFF``. An affine
         mixes the sample's and the line's ratios, which have different

@@ -36,7 +36,7 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
     ----------
     skew_per_line : float
         Earth rotation: columns of offset per line (the km offset of
-        :func:`earth_rotation_skew` divided by pixel size and line count).
+        :func:`~rsgeo.distortion.earth_rotation_skew` divided by pixel size and line count).
         Positive: each line's ground lies this much further towards column 0
         (west, on a descending pass shown north up) than the previous line's,
         so the recorded image shows features sliding towards higher columns.
@@ -49,7 +49,7 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
         Without view geometry this is a uniform shift of the whole image, the
         narrow-field approximation; with view geometry the angle is applied in
         scan-angle space, so a roll moves the ground more towards the swath
-        edge (:func:`attitude_displacement`).
+        edge (:func:`~rsgeo.distortion.attitude_displacement`).
     yaw_deg : float
         Constant yaw: rotation of the image about nadir.
     yaw_rate_deg_per_line : float
@@ -58,7 +58,7 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
         Wide field of view: when given, columns are scan angles of equal
         steps (nadir pixel / altitude), so pixels away from nadir cover more
         ground (the panoramic distortion on a curved Earth). The true grid is
-        then the orbit-aligned ground grid of :func:`scan_edges` in nadir pixels.
+        then the orbit-aligned ground grid of :func:`~rsgeo.distortion.scan_edges` in nadir pixels.
     roll_deg, pitch_deg : float
         Attitude in degrees, added to ``roll_px`` and ``pitch_px``; they need
         the view geometry (the altitude turns an angle into ground).
@@ -265,7 +265,7 @@ class SystematicDistortion(GeometricModel):  # numpydoc ignore=PR02
         return c + centre_c, r + centre_r
 
     def _image_to_true(self, cols, rows, shape, strict=True):
-        """Inverse of :meth:`_true_to_image` on arrays of any shape.
+        """Inverse of ``_true_to_image`` on arrays of any shape.
 
         With ``strict``, raise where no true position maps onto the input;
         otherwise return NaN there.

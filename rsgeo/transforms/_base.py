@@ -11,6 +11,11 @@ from ..errors import GCPError, ModelError
 from ..language import N_, _
 from ..validation import as_number, as_points
 
+__all__ = [
+    "compiled", "GeometricModel", "same_points", "residual_vectors", "rms_of", "outside_hull",
+    "InverseModel", "newton_inverse",
+]
+
 
 def compiled(name):
     """One of rsgeo's compiled modules (Numba), imported when a model is first evaluated, so
@@ -26,7 +31,7 @@ class GeometricModel:
 
     A geometric model maps points of one coordinate system (``src``) to
     another (``dst``). Subclasses define ``__call__`` and
-    :meth:`inverse`; :meth:`residuals` and :meth:`rms` come with the protocol.
+    :meth:`inverse`; :meth:`~rsgeo.accuracy.residuals` and :meth:`rms` come with the protocol.
 
     - ``model(points)``: (n, 2) array in, (n, 2) array out;
     - ``model.residuals(src, dst)``: per-point distance ``|model(src) - dst|``;
@@ -129,7 +134,7 @@ class GeometricModel:
         return residual_vectors(self, src, dst)[1]
 
     def rms(self, src, dst):
-        """The lecture's RMS of :meth:`residuals`: sqrt(Σ R_i² / n).
+        """The lecture's RMS of :meth:`~rsgeo.accuracy.residuals`: sqrt(Σ R_i² / n).
 
         Parameters
         ----------
@@ -143,7 +148,7 @@ class GeometricModel:
         Raises
         ------
         GCPError
-            As :meth:`residuals`, or when there is no point.
+            As :meth:`~rsgeo.accuracy.residuals`, or when there is no point.
 
         Examples
         --------

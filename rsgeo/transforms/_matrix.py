@@ -11,6 +11,10 @@ from ..language import _
 from ..validation import as_points
 from ._base import GeometricModel
 
+__all__ = [
+    "N_PARAMETERS", "MatrixModel", "fit_linear", "fit_helmert", "fit_projective",
+]
+
 # --- Matrix models: linear, Helmert, projective --------------------------------------------------
 
 
@@ -52,7 +56,8 @@ class MatrixModel(GeometricModel):
     ----------
     kind : str
     n_parameters : int
-        Free parameters: 4 (linear, Helmert) or 8 (projective), from :data:`REGISTRY`.
+        Free parameters: 4 (linear, Helmert) or 8 (projective), as
+        :data:`~rsgeo.transforms.REGISTRY` says.
     """
 
     KINDS = ("linear", "helmert", "projective")

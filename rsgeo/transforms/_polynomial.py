@@ -12,6 +12,11 @@ from ..language import N_, _
 from ..validation import as_integer, as_number, as_points
 from ._base import GeometricModel, InverseModel, compiled, newton_inverse
 
+__all__ = [
+    "ORDERS", "check_order", "n_terms", "term_names", "design_matrix", "normalised_design",
+    "PolynomialModel", "fit_polynomial",
+]
+
 # --- Polynomials (GDAL's centred, normalised least squares) --------------------------------------
 
 ORDERS = (1, 2, 3)
@@ -251,7 +256,7 @@ class PolynomialModel(GeometricModel):
         far from its GCPs Newton's method can converge to another preimage.
         For order >= 2 a solution is refused (``ModelError``) when it lies
         more than ``reach`` GCP extents outside the GCPs' convex hull
-        (:func:`outside_hull`) or where the polynomial's Jacobian has the
+        (:func:`~rsgeo.transforms.outside_hull`) or where the polynomial's Jacobian has the
         other sign than at the GCPs (the other side of a fold).
 
         Parameters

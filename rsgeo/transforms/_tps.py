@@ -10,6 +10,10 @@ from ..language import N_, _
 from ..validation import as_number, as_points
 from ._base import GeometricModel, InverseModel, compiled, newton_inverse
 
+__all__ = [
+    "TPSModel", "fit_tps",
+]
+
 # --- Thin-plate spline ---------------------------------------------------------------------------
 
 
@@ -31,10 +35,10 @@ class TPSModel(GeometricModel):
     Parameters
     ----------
     src, dst : (n, 2) ndarray
-        The GCPs, checked by :func:`fit_transform`.
+        The GCPs, checked by :func:`~rsgeo.transforms.fit_transform`.
 
     skipped : sequence of int
-        Rows of the GCPs given to :func:`fit_transform` that repeated an
+        Rows of the GCPs given to :func:`~rsgeo.transforms.fit_transform` that repeated an
         earlier GCP exactly (same src and dst) and were left out, as GDAL's
         TPS transformer does.
 
