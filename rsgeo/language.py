@@ -83,8 +83,8 @@ def set_language(language=None):
     >>> from rsgeo.language import _, set_language
     >>> set_language("pt_BR")
     'pt_BR'
-    >>> _("Correct")
-    'Correto'
+    >>> _("Play")
+    'Reproduzir'
     >>> set_language("en")
     'en'
     """
@@ -195,10 +195,10 @@ def translate(message, language=None):
     Examples
     --------
     >>> from rsgeo.language import translate
-    >>> translate("Not yet", "pt_BR")
-    'Ainda não'
-    >>> translate("Not yet", "en")
-    'Not yet'
+    >>> translate("Pause", "pt_BR")
+    'Pausar'
+    >>> translate("Pause", "en")
+    'Pause'
     >>> translate("", "pt_BR")
     ''
     """
@@ -283,7 +283,7 @@ def N_(message):
     Examples
     --------
     >>> from rsgeo.language import N_, translate
-    >>> translate(N_("not attempted"), "pt_BR")
-    'não tentado'
+    >>> translate(N_("Next frame"), "pt_BR")
+    'Próximo quadro'
     """
     return message

@@ -249,6 +249,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     Examples
     --------
     >>> import affine
+    >>> from rsgeo.sensors import simple_rpc_dict
     >>> rpc = RPCModel.from_dict(simple_rpc_dict())
     >>> image = np.arange(1000 * 1000, dtype=np.float32).reshape(1000, 1000)
     >>> dem = np.zeros((10, 10))

@@ -18,14 +18,14 @@ import pytest
 from rsgeo import (
     accuracy,
     distortion,
-    exercises,
     gcp,
-    matching,
     radiometry,
+    registration,
     resample,
     synthetic,
     transforms,
 )
+from rsgeo_course import exercises
 from rsgeo_course.exercises import ex01_distortions, ex04_resampling
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -211,8 +211,8 @@ def filter_size(kind="right"):
     return next(s for s in r if r[s] ** power >= 0.8)
 
 
-REFERENCE = matching.Mesh([[0, 0], [300, 0], [0, 400]], [100, 200, 300])
-ADJUSTMENT = matching.Mesh([[10, 5], [5, 395], [305, 10]], [110, 290, 190])
+REFERENCE = registration.Mesh([[0, 0], [300, 0], [0, 400]], [100, 200, 300])
+ADJUSTMENT = registration.Mesh([[10, 5], [5, 395], [305, 10]], [110, 290, 190])
 SOLUTION = np.array([1, 3, 2])
 
 
@@ -251,7 +251,7 @@ def decoded(kind="right"):
 @functools.cache
 def suboptimal():
     reference8, adjustment8, truth = synthetic.synthetic_meshes(n=8, seed=5)
-    poor = matching.genetic_match(reference8, adjustment8, seed=2, population_size=10,
+    poor = registration.genetic_match(reference8, adjustment8, seed=2, population_size=10,
                                   generations=15, mutation_rate=0.0)
     return poor.solution, truth
 

@@ -192,7 +192,7 @@ def test_overlap_refuses_rasters_in_different_crss():
     a = data.load("cbers_b2_A")
     b = data.load("cbers_b2_C")
     moved = data.Raster(b.array, b.transform, crs.as_crs(31982), None, "", "C in SIRGAS")
-    with pytest.raises(ValueError, match=r"different CRSs.*georef\.reproject"):
+    with pytest.raises(ValueError, match=r"different CRSs.*resample\.reproject"):
         radiometry.overlap(a, moved)
     unplaced = data.Raster(b.array, b.transform, None, None, "", "C without CRS")
     with pytest.raises(ValueError, match="EPSG:29192 and no CRS"):
@@ -430,6 +430,7 @@ def test_the_shipped_gcps_warn_that_degree_2_and_3_extrapolate_at_the_corners(ki
 
 HUGE_CASES = """
 import time
+from rsgeo import crs
 calls = [
     lambda: crs.datum_shift([[1e30, 1e30]], "EPSG:29193", "EPSG:31983"),
     lambda: crs.transform_points([[1e30, 1e30]], "EPSG:29193", "EPSG:31983"),

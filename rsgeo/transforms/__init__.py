@@ -305,6 +305,7 @@ def fit_transform(src, dst, kind, order=None):
 
     Examples
     --------
+    >>> import numpy as np
     >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10]], dtype=float)
     >>> model = fit_transform(src, src * 2 + 1, "helmert")
     >>> model.kind, model.n_parameters, model([[5.0, 5.0]]).round(6).tolist()

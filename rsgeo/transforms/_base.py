@@ -127,6 +127,7 @@ class GeometricModel:
         Examples
         --------
         >>> src = np.array([[0, 0], [10, 0], [0, 10]], dtype=float)
+        >>> from rsgeo.transforms import fit_polynomial
         >>> model = fit_polynomial(src, src + 1, 1)
         >>> model.residuals(src, src + [[1, 1], [1, 1], [4, 5]]).round(6) + 0.0
         array([0., 0., 5.])
@@ -153,6 +154,7 @@ class GeometricModel:
         Examples
         --------
         >>> src = np.array([[0, 0], [10, 0], [0, 10]], dtype=float)
+        >>> from rsgeo.transforms import fit_polynomial
         >>> round(fit_polynomial(src, src, 1).rms(src, src + [[3, 4], [0, 0], [0, 0]]), 4)
         2.8868
         """
@@ -336,6 +338,7 @@ def newton_inverse(model, start, tolerance, max_iterations, failure, floor=0.0):
     Examples
     --------
     >>> src = np.array([[0, 0], [10, 0], [0, 10], [10, 10], [5, 5], [5, 0]], dtype=float)
+    >>> from rsgeo.transforms import fit_polynomial
     >>> model = fit_polynomial(src, src + 0.01 * src**2, 2)
     >>> inverse = newton_inverse(model, model.reverse(), 1e-9, 50, lambda failed, q: "folds")
     >>> inverse(model([[3.0, 7.0]])).round(9) + 0.0
