@@ -2,7 +2,7 @@
 
 Numba caches a compiled function (``cache=True``) beside its source, keyed on
 that source file alone: a kernel of :mod:`rsgeo.resample` that calls
-:func:`rsgeo._kernels.transformer.row_positions` keeps the old machine code of
+``rsgeo._kernels.transformer.row_positions`` keeps the old machine code of
 the callee after ``transformer.py`` changes and ``resampling.py`` does not (Numba's
 documented limitation, "Notes on caching"). A course updated by ``git pull``
 into an editable install changes files one by one, so at import rsgeo

@@ -22,7 +22,7 @@ def line_of_sight_on_dem(ground, shape, dem, dem_transform, iterations):
     """Where lines of sight meet a DEM, by the fixed-point iteration h -> (x, y) -> h.
 
     One idea for every sensor model of the course (:class:`~rsgeo.sensors.PushbroomSensor`,
-    :class:`rsgeo.synthetic.RawSensor`): start on the datum (h = 0), find where each line of
+    :class:`rsgeo.sensors.RawSensor`): start on the datum (h = 0), find where each line of
     sight is at that height, read the DEM there, repeat. Each step shrinks the error by the
     terrain's slope times tan θ, so a few steps suffice on gentle terrain.
 

@@ -24,10 +24,11 @@ __all__ = [
     "scan_edges", "ground_point", "orbit_coordinates",
 ]
 
-# moved to rsgeo.sensors: importable from here for one release, with a warning
-__getattr__, __dir__ = moved_names(__name__, {
+# moved to rsgeo.sensors: importable from here for one release, with a warning (the module
+# keeps its own dir(): autodoc and help() list what it defines)
+__getattr__ = moved_names(__name__, {
     name: "rsgeo.sensors" for name in ("SystematicDistortion", "simulate", "correct",
-                                       "distorted_grid")})
+                                       "distorted_grid")})[0]
 
 EARTH_RADIUS_KM = 6371.0
 EQUATORIAL_RADIUS_KM = 6378.137

@@ -2,7 +2,7 @@
 
 Messages a user reads (the ``ValueError`` messages of :mod:`rsgeo.validation` and the public verbs,
 the labels of the figures :mod:`rsgeo.plot` draws, the widgets' controls) are written in English
-in the code and wrapped in :func:`_` (a message chosen later is marked with :func:`N_` and
+in the code and wrapped in ``_()`` (a message chosen later is marked with :func:`N_` and
 translated when it is shown); their Portuguese lives in the gettext catalogue
 ``rsgeo/locale/pt_BR/LC_MESSAGES/rsgeo.po``, shipped compiled (``rsgeo.mo``). A package built on
 rsgeo keeps its own catalogue and reads it with :func:`catalogue`, in the language chosen here.
@@ -172,7 +172,7 @@ def catalogue(language, domain=DOMAIN, locale_dir=LOCALE_DIR):
     return _gettext.translation(domain, Path(locale_dir), languages=[language], fallback=True)
 
 
-def translate(message, language=None):
+def translate(message, language=None, domain=DOMAIN, locale_dir=LOCALE_DIR):
     """``message`` in ``language`` (default: :func:`get_language`); English when not translated.
 
     Parameters
@@ -181,6 +181,10 @@ def translate(message, language=None):
         The English text, as written in the code (a format string is translated unfilled).
     language : str, optional
         ``"en"`` or ``"pt_BR"``; default the current language.
+    domain : str, optional
+        The catalogue (default rsgeo's messages; a package built on rsgeo names its own).
+    locale_dir : str or pathlib.Path, optional
+        The folder of ``domain``'s catalogues (default rsgeo's).
 
     Returns
     -------
@@ -205,7 +209,7 @@ def translate(message, language=None):
     language = resolve_language(language)
     if not message:                     # gettext("") is the catalogue's header, not a message
         return message
-    return catalogue(language).gettext(message)
+    return catalogue(language, domain, locale_dir).gettext(message)
 
 
 _ = translate

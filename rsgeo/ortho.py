@@ -1,7 +1,7 @@
 """Orthorectification with RPCs and a DEM, as GDAL does it; the orthoimage checked on the image.
 
 Measured agreement with GDAL 3.10 through rasterio (``tests/test_terrain.py``):
-:meth:`RPCModel.project` is GDAL's ``RPCTransformer`` to the last bit at
+:meth:`~rsgeo.sensors.RPCModel.project` is GDAL's ``RPCTransformer`` to the last bit at
 random (lon, lat, h); :func:`orthorectify` gives ``reproject(...,
 rpcs=..., RPC_DEM=..., tolerance=0)``'s pixels bit for bit for nearest,
 bilinear and cubic, with the output grid in EPSG:4326 or UTM, with the DEM's
@@ -168,7 +168,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     For each output cell centre: its longitude and latitude (through
     ``dst_crs`` when the grid is projected), its height from the DEM
     (bilinear, GDAL's :func:`~rsgeo.dem.dem_height`), the RPC's image position
-    (:meth:`RPCModel.project`), and the value there by
+    (:meth:`~rsgeo.sensors.RPCModel.project`), and the value there by
     :func:`rsgeo.resample.interpolate` (GDAL's kernels, plain 2 × 2 and 4 × 4:
     GDAL's XSCALE = YSCALE = 1). This is ``gdalwarp -rpc -to RPC_DEM=dem.tif
     -to RPC_DEMINTERPOLATION=bilinear -et 0``.
@@ -178,7 +178,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     image : ndarray
         The raw image the RPC describes, (rows, cols) or (bands, rows, cols).
     rpc : RPCModel or mapping
-        Its RPC (a mapping is read with :meth:`RPCModel.from_dict`).
+        Its RPC (a mapping is read with :meth:`~rsgeo.sensors.RPCModel.from_dict`).
     dem : (rows, cols) array_like
         Heights (m) above what ``dem_vertical`` says; NaN marks holes.
     dem_transform : affine.Affine or sequence of 6 numbers

@@ -26,8 +26,9 @@ __all__ = [
     "two_date_landscape", "synthetic_meshes", "ControlPoints", "RawScene", "raw_scene",
 ]
 
-# moved to rsgeo.sensors: importable from here for one release, with a warning
-__getattr__, __dir__ = moved_names(__name__, {"RawSensor": "rsgeo.sensors"})
+# moved to rsgeo.sensors: importable from here for one release, with a warning (the module
+# keeps its own dir())
+__getattr__ = moved_names(__name__, {"RawSensor": "rsgeo.sensors"})[0]
 
 
 # -- The regression paper's case ---------------------------------------------

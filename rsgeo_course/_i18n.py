@@ -14,12 +14,12 @@ from pathlib import Path
 from rsgeo.language import (
     N_,
     PORTUGUESE_SEPARATORS,
-    catalogue,
     get_language,
     prose_number,
     resolve_language,
     set_language,
 )
+from rsgeo.language import translate as rsgeo_translate
 
 __all__ = ["DOMAIN", "LOCALE_DIR", "VERDICT_LABELS", "translate", "_", "N_", "prose_number",
            "get_language", "set_language", "resolve_language", "PORTUGUESE_SEPARATORS"]
@@ -51,10 +51,7 @@ def translate(message, language=None):
     >>> translate("Not yet", "en")
     'Not yet'
     """
-    language = resolve_language(language)
-    if not message:                     # gettext("") is the catalogue's header, not a message
-        return message
-    return catalogue(language, DOMAIN, LOCALE_DIR).gettext(message)
+    return rsgeo_translate(message, language, DOMAIN, LOCALE_DIR)
 
 
 _ = translate

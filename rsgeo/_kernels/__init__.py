@@ -1,9 +1,9 @@
 """rsgeo's compiled internals (Numba), shared by the models and the warps; not an API.
 
-- :mod:`rsgeo._kernels.thin_plate` - GDAL's thin-plate-spline solver and evaluator;
-- :mod:`rsgeo._kernels.transformer` - every model packed as arrays and evaluated inside a
+- ``rsgeo._kernels.thin_plate`` - GDAL's thin-plate-spline solver and evaluator;
+- ``rsgeo._kernels.transformer`` - every model packed as arrays and evaluated inside a
   kernel, as GDAL's transformers are;
-- :mod:`rsgeo._kernels.resampling` - the per-pixel loops of GDAL's warp kernels.
+- ``rsgeo._kernels.resampling`` - the per-pixel loops of GDAL's warp kernels.
 
 The public verbs that use them are :mod:`rsgeo.transforms`, :mod:`rsgeo.resample` and
 :mod:`rsgeo.ortho`; nothing outside rsgeo imports this package.

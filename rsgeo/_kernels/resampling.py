@@ -1,7 +1,7 @@
 """GDAL's warp kernels, one per-pixel loop per method, compiled by Numba.
 
 For each output pixel: find its position in the source (the model evaluated inside the loop,
-:mod:`rsgeo._kernels.transformer`), take the 1 (nearest), 4 (bilinear) or 16 (cubic)
+``rsgeo._kernels.transformer``), take the 1 (nearest), 4 (bilinear) or 16 (cubic)
 neighbours, weight them, round, store; GDAL's ``alg/gdalwarpkernel.cpp`` operation by operation
 (see :mod:`rsgeo.resample` for what "bit for bit" covers). The public verbs are
 :func:`rsgeo.resample.interpolate` and :func:`rsgeo.resample.warp`.
@@ -205,7 +205,7 @@ def resample_pixels(image, method, nodata, num_threads, cols, rows, packed, size
 
     ``out`` is (bands, size) in ``image``'s dtype. Positions come from the
     arrays ``cols``, ``rows`` (``packed`` is ``POSITIONS_GIVEN``) or are
-    computed row by row by the packed transformer (:mod:`rsgeo._kernels.transformer`)
+    computed row by row by the packed transformer (``rsgeo._kernels.transformer``)
     for an output grid ``row_length`` pixels wide. ``valid``:
     the source validity mask (``_validity``), or None for none.
     """
@@ -299,7 +299,7 @@ def _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, 
     """Where the pixels of output row i fall in the source; returns how many pixels it has.
 
     Either read from the arrays of positions (kind ARRAYS), or computed by
-    the packed transformer (:func:`rsgeo._kernels.transformer.row_positions`: the
+    the packed transformer (``rsgeo._kernels.transformer.row_positions``: the
     output pixel's centre (j + 0.5, i + 0.5) through the output grid's
     geotransform and the model, as GDAL's transformer does for a row, exactly
     or with GDAL's approximation, then its second try near the source's

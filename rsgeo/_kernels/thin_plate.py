@@ -3,7 +3,7 @@
 A port of GDAL's ``alg/thinplatespline.cpp`` (``VizGeorefSpline2D``, by VIZRT) and of the
 map -> pixel direction of its transformer (``alg/gdal_tps.cpp``), so that rsgeo's spline gives
 the numbers GDAL's gives, bit for bit, and can be evaluated inside the warp kernels one point at
-a time (:mod:`rsgeo._kernels.transformer`). What GDAL does, and so what this module does:
+a time (``rsgeo._kernels.transformer``). What GDAL does, and so what this module does:
 
 **Solving** (``VizGeorefSpline2D::solve``). The n GCPs' src points (x, y) are centred on their
 mean, and the spline

@@ -26,7 +26,7 @@ The packed array::
                          m of row, for coordinates centred on the origin and divided by scale
                          (:class:`rsgeo.transforms.PolynomialModel`)
              PROJECTIVE  the 3 x 3 matrix, row by row
-             TPS         :mod:`rsgeo._kernels.thin_plate`'s packed spline
+             TPS         ``rsgeo._kernels.thin_plate``'s packed spline
 
 A model offers its packing through a ``kernel_form()`` method returning
 ``(kind, parameters)``; a mapping without one (any Python callable) is

@@ -1124,7 +1124,7 @@ def register_by_regions(reference, adjustment, reference_transform, reference_pi
 
     Returns
     -------
-    rsgeo.Registration
+    rsgeo.registration.Registration
         The refined affine model, the GCPs (matched reference centroids, map
         units; adjustment centroids, adjustment pixels) and the GA's ``match``.
 

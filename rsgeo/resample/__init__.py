@@ -11,7 +11,7 @@
   than memory.
 
 What "bit for bit with GDAL" covers, and where gdalwarp's defaults differ, is said in
-:mod:`rsgeo.resample._warp`'s notes, repeated on :func:`warp`.
+``rsgeo.resample._warp``'s notes, repeated on :func:`warp`.
 """
 
 from .._kernels.resampling import (

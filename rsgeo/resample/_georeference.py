@@ -31,8 +31,8 @@ class CRSMapping:
         Source map (x, y) in ``src_crs`` -> source image (col, row).
     src_crs, dst_crs : rasterio.crs.CRS
     transformation : optional
-        The datum transformation to apply (:func:`transform_points`); PROJ's choice, point
-        by point, by default.
+        The datum transformation to apply (:func:`~rsgeo.crs.transform_points`); PROJ's
+        choice, point by point, by default.
     """
 
     def __init__(self, to_source, src_crs, dst_crs, transformation=None):
@@ -82,7 +82,7 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
     like ``gdalwarp -et 0``) and then to the source pixel by the inverse
     geotransform. The output grid is north-up over the transformed footprint,
     with the source's pixel size unless ``resolution`` is given. The datum
-    transformation is :func:`transform_points`' (IBGE's grid from SAD69 to
+    transformation is :func:`~rsgeo.crs.transform_points`' (IBGE's grid from SAD69 to
     SIRGAS 2000 where it applies), named in the result's description;
     ``gdalwarp -ct`` with its ``pipeline`` (:func:`~rsgeo.crs.transformations`) gives GDAL
     the same one.
@@ -99,7 +99,7 @@ def reproject(raster, dst_crs, resolution=None, method="nearest", nodata=0,
         Destination nodata (``gdalwarp -dstnodata``).
     transformation : str, int, sequence or Transformation, optional
         The datum transformation to apply instead of PROJ's choice (see
-        :func:`transform_points`), e.g. ``"EPSG:15485"``.
+        :func:`~rsgeo.crs.transform_points`), e.g. ``"EPSG:15485"``.
 
     Returns
     -------

@@ -340,7 +340,7 @@ def warp(image, mapping, dst_shape, dst_transform=None, *, method="nearest", dst
 
     An ``affine.Affine`` and rsgeo's polynomial, projective and thin-plate
     spline models are evaluated inside the compiled kernel, row by row, as
-    GDAL's transformer is (:mod:`rsgeo._kernels.transformer`): no array of positions
+    GDAL's transformer is (``rsgeo._kernels.transformer``): no array of positions
     is ever made. Any other callable is evaluated in NumPy, in strips of
     ``strip_rows`` rows, so that memory stays a small multiple of input plus
     output.

@@ -103,7 +103,7 @@ class MatrixModel(GeometricModel):
         return homogeneous[:, :2] / w[:, np.newaxis]
 
     def kernel_form(self):
-        """The model packed for the warp kernels (see :mod:`rsgeo._kernels.transformer`).
+        """The model packed for the warp kernels (see ``rsgeo._kernels.transformer``).
 
         Returns
         -------

@@ -172,7 +172,7 @@ class PolynomialModel(GeometricModel):
                                                           as_points(points))
 
     def kernel_form(self):
-        """The model packed for the warp kernels (see :mod:`rsgeo._kernels.transformer`).
+        """The model packed for the warp kernels (see ``rsgeo._kernels.transformer``).
 
         Returns
         -------

@@ -24,7 +24,7 @@ class TPSModel(GeometricModel):
     r_i the distance to GCP i (x and y measured from the GCPs' mean); the
     weights make it pass through every GCP and its bending energy is the
     smallest that does. Solved and evaluated as GDAL's ``VizGeorefSpline2D``
-    does (:mod:`rsgeo._kernels.thin_plate`): the same LU decomposition, the same
+    does (``rsgeo._kernels.thin_plate``): the same LU decomposition, the same
     order of operations, GDAL's faster logarithm for the grouped terms, so
     its values equal GDAL's to the last bit. It therefore misses its GCPs by
     GDAL's rounding (about 1e-11 px with tens of GCPs, 1e-7 px with
@@ -51,7 +51,7 @@ class TPSModel(GeometricModel):
     skipped : tuple of int
         The exact duplicates left out.
     packed : ndarray
-        The solved spline, read-only, for :func:`rsgeo._kernels.thin_plate.evaluate`
+        The solved spline, read-only, for ``rsgeo._kernels.thin_plate.evaluate``
         (its layout is in that module's docstring).
     """
 
@@ -85,7 +85,7 @@ class TPSModel(GeometricModel):
         return _evaluate_tps(self.packed, points)
 
     def kernel_form(self):
-        """The model packed for the warp kernels (see :mod:`rsgeo._kernels.transformer`).
+        """The model packed for the warp kernels (see ``rsgeo._kernels.transformer``).
 
         Returns
         -------
@@ -177,7 +177,7 @@ class TPSModel(GeometricModel):
             relative to the extent of ``dst``.
         max_iterations : int, optional
             Newton steps at most, GDAL's (by default its 15,
-            :data:`rsgeo._kernels.thin_plate.GDAL_STEPS`) and again as many for the
+            ``rsgeo._kernels.thin_plate.GDAL_STEPS``) and again as many for the
             points they leave short.
 
         Returns
@@ -185,7 +185,7 @@ class TPSModel(GeometricModel):
         InverseModel
             Raises ``ModelError`` at points where the refinement does not
             converge (the spline folds there); its ``packed`` attribute is
-            :func:`rsgeo._kernels.thin_plate.pack_inverse` of this spline and its reverse.
+            ``rsgeo._kernels.thin_plate.pack_inverse`` of this spline and its reverse.
 
         Raises
         ------
@@ -239,7 +239,7 @@ class _TPSInverse(InverseModel):
         super().__init__(forward, self._solve_points)
 
     def kernel_form(self):
-        """The inversion packed for the warp kernels (see :mod:`rsgeo._kernels.transformer`).
+        """The inversion packed for the warp kernels (see ``rsgeo._kernels.transformer``).
 
         Returns
         -------
