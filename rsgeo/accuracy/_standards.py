@@ -105,7 +105,7 @@ def pec_thresholds(scale, standard="PEC-PCD"):
         The scale's denominator: 25000 for 1:25,000.
     standard : {"PEC-PCD", "Decreto 89.817"}
         The DSG's classes A-D for digital products, or the 1984 decree's
-        classes A-C for printed maps (:data:`PEC_CLASSES`).
+        classes A-C for printed maps (``PEC_CLASSES``).
 
     Returns
     -------
@@ -305,7 +305,7 @@ def largest_scale(errors, standard="PEC-PCD", scales=MAP_SCALES):
         Check-point discrepancies (dx, dy) in metres, or their lengths.
     standard : {"PEC-PCD", "Decreto 89.817"}
     scales : sequence of float
-        Candidate denominators; default :data:`MAP_SCALES`, 1:1,000 to 1:250,000.
+        Candidate denominators; default ``MAP_SCALES``, 1:1,000 to 1:250,000.
 
     Returns
     -------

@@ -119,7 +119,7 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
     ------
     ValueError
         If ``bands`` is not 3-D with at least two bands or holds NaN, the
-        window is not a whole number from :data:`MIN_WINDOW` to the bands'
+        window is not a whole number from ``MIN_WINDOW`` to the bands'
         smaller side, a count or threshold is out of its range, ``names`` or
         ``valid`` does not fit the bands, the feature is unknown, or fewer
         than two windows of a pair are usable (the message counts each

@@ -104,7 +104,7 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
     ValueError
         If the images differ in shape, are not 2-D or hold NaN, or step
         or upsample is not a positive whole number, the window is not a whole
-        number from :data:`MIN_WINDOW` to the images' smaller side, or
+        number from ``MIN_WINDOW`` to the images' smaller side, or
         ``valid`` is not a mask of their shape.
 
     References
@@ -599,7 +599,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     ------
     ValueError
         If an image is not 2-D, holds NaN, the window is smaller than
-        :data:`MIN_WINDOW` or larger than the reference, ``iterations`` is not a
+        ``MIN_WINDOW`` or larger than the reference, ``iterations`` is not a
         whole number from 1, ``spacing``, ``upsample`` or ``seed`` is not a
         whole number (a bool is not one: ``TypeError``) in its range,
         ``min_contrast``, ``min_reliability`` or ``tolerance`` is not a finite

@@ -344,7 +344,7 @@ class ExteriorOrientation:
 
     @classmethod
     def from_array(cls, values):
-        """An exterior orientation from the six values in :data:`PARAMETERS` order.
+        """An exterior orientation from the six values in ``PARAMETERS`` order.
 
         Parameters
         ----------
@@ -367,7 +367,7 @@ class ExteriorOrientation:
         return cls(*(float(v) for v in values))
 
     def as_array(self):
-        """The six values in :data:`PARAMETERS` order.
+        """The six values in ``PARAMETERS`` order.
 
         Returns
         -------
@@ -657,7 +657,7 @@ class Resection:
         The a-posteriori standard deviation of unit weight, sqrt(vᵀv / (2n - 6)), pixels; NaN
         without redundancy (3 GCPs).
     cofactor : ndarray, shape (6, 6)
-        (AᵀA)⁻¹, A the Jacobian, in the units of :data:`UNITS` per pixel: the covariance of a
+        (AᵀA)⁻¹, A the Jacobian, in the units of ``UNITS`` per pixel: the covariance of a
         measurement error of one pixel (times the a-priori variance in px², it is the
         a-priori covariance).
     covariance : ndarray, shape (6, 6)
@@ -732,7 +732,7 @@ class Resection:
         Returns
         -------
         pandas.DataFrame
-            One row per parameter (:data:`PARAMETERS`): unit, estimate, std; with ``truth``
+            One row per parameter (``PARAMETERS``): unit, estimate, std; with ``truth``
             also true, error, and error / std.
 
         Raises
