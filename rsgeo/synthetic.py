@@ -606,7 +606,7 @@ def raw_scene(shape=(600, 560), nadir_pixel_m=10.0, off_nadir_deg=30.0, altitude
     """
     from rasterio.crs import CRS
 
-    from . import distortion, heights
+    from . import distortion, heights, sensors
 
     shape = as_shape(shape)
     pixel_km = as_number(nadir_pixel_m, "nadir_pixel_m", low=1e-3, high=1e4) / 1000
@@ -624,7 +624,7 @@ def raw_scene(shape=(600, 560), nadir_pixel_m=10.0, off_nadir_deg=30.0, altitude
         crs, "EPSG:4326", dem_x.ravel(), dem_y.ravel()))
     ellipsoidal = heights.to_ellipsoidal(dem.array, dem_lon, dem_lat, "EGM96")
     skew = distortion.skew_per_line(lat, shape[0], pixel_km, altitude_km, inclination_deg)
-    model = distortion.SystematicDistortion(skew_per_line=skew, roll_deg=-off_nadir_deg,
+    model = sensors.SystematicDistortion(skew_per_line=skew, roll_deg=-off_nadir_deg,
                                             view_altitude_km=altitude_km,
                                             nadir_pixel_km=pixel_km, shape=shape)
     heading = distortion.track_angle(lat, inclination_deg)

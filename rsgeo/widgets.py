@@ -22,7 +22,7 @@ from html import escape
 
 import numpy as np
 
-from . import accuracy, distortion, radiometry, registration, transforms
+from . import accuracy, distortion, radiometry, registration, sensors, transforms
 from .errors import GCPError, GridError, RsgeoError
 from .language import _, prose_number
 from .plot import (
@@ -231,7 +231,7 @@ def distortion_explorer(shape=(300, 300)):
     }
     figure = _widget_figure((11, 4.5))
     left, right = figure.subplots(1, 2)
-    nominal = distortion.distorted_grid(distortion.SystematicDistortion(), shape, 50)
+    nominal = sensors.distorted_grid(sensors.SystematicDistortion(), shape, 50)
     draw_grid(left, nominal, color="lightgray")
     grid = draw_grid(left, nominal)
     left.set(xlim=(-60, shape[1] + 60), ylim=(shape[0] + 60, -60), xlabel=_("column (pixels)"),
@@ -248,10 +248,10 @@ def distortion_explorer(shape=(300, 300)):
         value = {name: float(control.value) for name, control in controls.items()}
         # skew of a 185 km Landsat frame, expressed per line of a 300-line image
         skew_km = distortion.earth_rotation_skew(value["latitude"])
-        model = distortion.SystematicDistortion(
+        model = sensors.SystematicDistortion(
             skew_per_line=skew_km / 185.0, roll_px=value["roll"], pitch_px=value["pitch"],
             yaw_deg=value["yaw"], yaw_rate_deg_per_line=value["yaw_rate"])
-        grid.set_data(*grid_path(distortion.distorted_grid(model, shape, 50)))
+        grid.set_data(*grid_path(sensors.distorted_grid(model, shape, 50)))
         left.set_title(_("grid as recorded (last line {skew:.1f} km west per 185 km)").format(
             skew=prose_number(skew_km)), y=1.0)
         a, c = distortion.pixel_size(value["scan"], 705.0)

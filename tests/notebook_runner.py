@@ -6,6 +6,7 @@ CI executes each notebook once: the book's build (the README's first command) ex
 notebook into its cache, ``_build/.jupyter_cache``, with the figure audit on in its kernels
 (book/_ext/offline_book.py, figure_audit.py). :func:`executed_notebook` reads that execution
 when it matches the notebook's current code and is newer than every file of rsgeo and its data,
+of the course's package (its checks, figure descriptions and translations),
 the saved benchmark tables, chapter 6's experiment harness and the audit; otherwise it
 executes the notebook itself, with the same audit.
 """
@@ -28,7 +29,7 @@ from offline_book import AuditedKernelManager, IPCKernelManager  # noqa: E402
 
 BOOK_CACHE = ROOT / "_build" / ".jupyter_cache"
 # what a cached execution depends on besides the notebook's own code
-DEPENDENCIES = ("rsgeo", "benchmarks/results", "benchmarks/ga_experiments.py",
+DEPENDENCIES = ("rsgeo", "rsgeo_course", "benchmarks/results", "benchmarks/ga_experiments.py",
                 "book/_ext/figure_audit.py")
 
 
@@ -74,8 +75,8 @@ def cached_execution(path):
     """The book build's execution of ``path`` if it is current, else None.
 
     Current: the cache holds an execution of the notebook's present code, made after the last
-    change to rsgeo or the saved tables. Its figure problems are the standard-error lines the
-    audit wrote (``metadata["figure_problems"]``).
+    change to rsgeo, the course's package or the saved tables. Its figure problems are the
+    standard-error lines the audit wrote (``metadata["figure_problems"]``).
     """
     if not BOOK_CACHE.exists():
         return None

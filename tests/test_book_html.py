@@ -121,7 +121,8 @@ def test_api_signatures_show_each_parameter_with_its_name_then_its_default(langu
                if any(parameter[:1] in ":=" for parameter in parameters)}
     assert not garbled, f"{len(garbled)} garbled signatures, e.g. {next(iter(garbled.items()))}"
     warp = shown["rsgeo.resample.warp"]
-    assert warp[:5] == ["image", "mapping", "shape", "transform=None", "method='nearest'"], warp
+    assert warp[:6] == ["image", "mapping", "dst_shape", "dst_transform=None", "*",
+                        "method='nearest'"], warp
     compared = 0
     for name, parameters in shown.items():
         target = documented(name)

@@ -148,10 +148,10 @@ def test_refusals():
     with pytest.raises(errors.RsgeoError, match="shape"):
         synthetic.raw_scene(shape=(0, 10), simulate=False)
     with pytest.raises(errors.ModelError, match="view geometry"):
-        synthetic.RawSensor(sensors.SystematicDistortion(shape=(10, 10)), (0.0, 0.0), 8.0,
+        sensors.RawSensor(sensors.SystematicDistortion(shape=(10, 10)), (0.0, 0.0), 8.0,
                             100.0)
     with pytest.raises(TypeError):
-        synthetic.RawSensor("not a model", (0.0, 0.0), 8.0, 100.0)
+        sensors.RawSensor("not a model", (0.0, 0.0), 8.0, 100.0)
     with pytest.raises(errors.ModelError, match="NaN"):
         scene().sensor.project(np.nan, 0.0, 0.0)
     with pytest.raises(errors.RsgeoError, match="noise_px"):

@@ -349,11 +349,12 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
         Float16 is written as float32 (GeoTIFF through GDAL 3.10 has no
         float16) and a big-endian array in the machine's byte order, both
         without changing a value.
-    transform : affine.Affine or sequence of 6 numbers, optional
-        Pixel corner (col, row) → map (x, y). A 6-tuple is read in GDAL's
-        order (x0, pixel width, row rotation, y0, column rotation, pixel
-        height), as ``dataset.GetGeoTransform()`` and ``gdalinfo`` give it;
-        one in affine.Affine's order (pixel width first) is refused.
+    transform : affine.Affine, optional
+        Pixel corner (col, row) → map (x, y). A GDAL 6-tuple (x0, pixel width,
+        row rotation, y0, column rotation, pixel height), as
+        ``dataset.GetGeoTransform()`` and ``gdalinfo`` give it, is still read,
+        with a DeprecationWarning (``affine.Affine.from_gdal(*t)`` converts
+        it); one in affine.Affine's order (pixel width first) is refused.
     crs : str, int or rasterio CRS, optional
         E.g. ``"EPSG:29191"`` (see :func:`rsgeo.crs.as_crs`).
     nodata : number, optional
@@ -375,10 +376,11 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
 
     Examples
     --------
-    >>> import tempfile, rasterio
+    >>> import tempfile, affine, rasterio
     >>> folder = tempfile.mkdtemp()
     >>> written = save(f"{folder}/ramp.tif", np.arange(12, dtype=np.uint8).reshape(3, 4),
-    ...                transform=(500000.0, 10.0, 0.0, 7400000.0, 0.0, -10.0), crs="EPSG:31983")
+    ...                transform=affine.Affine(10.0, 0.0, 500000.0, 0.0, -10.0, 7400000.0),
+    ...                crs="EPSG:31983")
     >>> with rasterio.open(written) as dataset:
     ...     dataset.transform.c, dataset.transform.a, dataset.crs.to_epsg()
     (500000.0, 10.0, 31983)

@@ -62,7 +62,8 @@ class RawSensor:
 
     Examples
     --------
-    >>> from rsgeo.distortion import SystematicDistortion, ground_distance
+    >>> from rsgeo.distortion import ground_distance
+    >>> from rsgeo.sensors import SystematicDistortion
     >>> model = SystematicDistortion(roll_deg=-20.0, view_altitude_km=778.0,
     ...                              nadir_pixel_km=0.01, shape=(100, 100))
     >>> sensor = RawSensor(model, (5000.0, 9000.0), 8.6, ground_distance(20.0, 778.0))
