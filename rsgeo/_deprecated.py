@@ -32,7 +32,8 @@ def moved_names(old_module, homes):
     Returns
     -------
     tuple
-        ``(__getattr__, __dir__)`` to assign in the old module.
+        ``(__getattr__, __dir__)`` to assign in the old module; ``__getattr__.homes`` is
+        ``homes``.
     """
     def __getattr__(name):
         if name not in homes:
@@ -43,6 +44,7 @@ def moved_names(old_module, homes):
     def __dir__():
         return sorted(homes)
 
+    __getattr__.homes = dict(homes)
     return __getattr__, __dir__
 
 

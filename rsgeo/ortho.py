@@ -12,7 +12,7 @@ moved to 1 by rsgeo (GDAL's "AvoidNoData", which rsgeo.resample applies as
 GDAL's VRT warps do) and left at 0 by ``reproject``: about 0.5 % of the valid
 pixels of a uniform-noise image, each by 1 DN. GDAL 3.10 replaces a valid value
 that collides with the destination nodata inconsistently across its warp paths
-(GDAL issue 11711; changed in 3.11 by pull request 11713).
+(its developers made it consistent in GDAL 3.11).
 
 How :func:`orthorectify` computes, strip of output rows by strip (GDAL's
 warper asks its transformer row by row): one compiled pass (Numba) gives

@@ -68,7 +68,6 @@ ALLOWED: dict[str, list[str]] = {
     "04b_relief_orthorectification.ipynb": [
         # a licence's name and a GDAL issue and pull request: references, not results
         "Apache-2.0",
-        "GDAL issue 11711, pull request 11713",
     ],
     "01_systematic_distortions.ipynb": [
         # the lecture's own words, quoted to be checked against each sensor's field of view

@@ -306,7 +306,7 @@ def test_language_switch_opens_the_same_page_in_the_other_book(browser, sites, b
 @pytest.mark.parametrize("book", BOOKS)
 def test_the_table_of_contents_opens_below_992_px(browser, sites, book, width):
     # pydata-sphinx-theme 0.17 with sphinx-book-theme 1.3 binds the toggle's handler to a hidden
-    # duplicate button (pydata-sphinx-theme issue 2451): the visible one did nothing on a phone
+    # duplicate button (a bug of pydata-sphinx-theme 0.17): the visible one did nothing on a phone
     page = browser.new_page(viewport={"width": width, "height": 844})
     page.goto(f"{sites[book]}/book/04_resampling.html", wait_until="load")
     drawer = page.locator("dialog#pst-primary-sidebar-modal")

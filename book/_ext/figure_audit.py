@@ -138,8 +138,10 @@ def audit_rendered_figures(to_stderr=False):
     the build. Every PNG gets a ``Description`` text chunk,
     :func:`rsgeo_course.alt_text.describe_figure` of its figure, which the book's extension
     figure_alt.py makes the image's alternative text. It patches matplotlib's
-    ``FigureCanvasBase.print_figure`` for the running process only, and installs the same
-    description for the figures rsgeo renders itself (:func:`rsgeo.plot.set_figure_describer`).
+    ``FigureCanvasBase.print_figure`` for the running process only. The first description
+    imports the course's package, which installs the same description for the figures rsgeo
+    renders itself (:func:`rsgeo.plot.set_figure_describer`): a widget's frame or an animation's
+    player is saved as a PNG before it is described.
 
     Parameters
     ----------
@@ -156,9 +158,6 @@ def audit_rendered_figures(to_stderr=False):
 
     if getattr(FigureCanvasBase.print_figure, "_figure_audit", False):
         return
-    # the course's describer, installed in rsgeo.plot as the course is imported: the widgets'
-    # frames and the animation players rsgeo draws say what they show as the PNGs do
-    import rsgeo_course  # noqa: F401
     original = FigureCanvasBase.print_figure
 
     def print_figure(self, *args, **kwargs):
