@@ -420,11 +420,8 @@ def machine():
     import numba
     import rasterio
 
-    try:
-        layer = numba.threading_layer()
-    except ValueError:              # no parallel region has run yet
-        layer = "not yet chosen"
-    return describe(numba=f"{numba.__version__} (threading layer {layer})",
+    return describe(numba=f"{numba.__version__} (rsgeo's threads: Python threads over blocks "
+                          "of rows)",
                     GDAL=rasterio.__gdal_version__, rasterio=rasterio.__version__)
 
 

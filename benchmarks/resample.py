@@ -455,19 +455,10 @@ def machine():
         opencv = cv2.__version__
     except ImportError:
         opencv = "not installed"
-    return describe(numba=f"{numba.__version__} (threading layer {_threading_layer()})",
+    return describe(numba=f"{numba.__version__} (rsgeo's threads: Python threads over blocks "
+                          "of rows)",
                     GDAL=rasterio.__gdal_version__, rasterio=rasterio.__version__,
                     **{"scikit-image": skimage.__version__, "OpenCV": opencv})
-
-
-def _threading_layer():
-    import numba
-
-    try:
-        return numba.threading_layer()
-    except ValueError:              # no parallel region has run yet
-        warp(np.zeros((2, 2), dtype=np.uint8), affine.Affine.identity(), (2, 2))
-        return numba.threading_layer()
 
 
 def columns(threads):

@@ -34,11 +34,6 @@ working from their old homes for one release, with a ``DeprecationWarning``.
 import importlib
 import pkgutil
 
-from . import _numba_cache
-
-# before any compiled module is imported: Numba's cache must not outlive a changed callee
-_numba_cache.refresh()
-
 __version__ = "0.1.0"
 
 # Every public module, imported on first use: ``import rsgeo; rsgeo.gcp`` works without

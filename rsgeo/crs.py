@@ -28,11 +28,59 @@ import numpy as np
 from . import _proj
 from .errors import CRSError, DataError, GridError
 from .language import _
-from .validation import as_crs, as_points
+from .validation import as_crs as _as_crs
+from .validation import as_points
 
 __all__ = ["as_crs", "transform_points", "datum_shift", "DatumShift", "transformations",
            "Transformation", "transformation_at", "SHIFT_GRIDS", "ShiftGrid", "read_shift_grid",
            "grid_shift", "geocentric_translation"]
+
+def as_crs(crs, name="crs"):
+    """A rasterio CRS from a code, a string or a CRS, refusing one PROJ does not know.
+
+    Parameters
+    ----------
+    crs : str, int or rasterio.crs.CRS
+        ``"EPSG:29193"``, ``29193``, a WKT or PROJ string, or a CRS.
+    name : str
+        The argument's name, for the error message.
+
+    Returns
+    -------
+    rasterio.crs.CRS
+
+    Raises
+    ------
+    CRSError
+        If ``crs`` is None or PROJ does not recognise it; if PROJ's database is not found (a
+        broken install: ``PROJ_DATA`` pointing elsewhere), that is what the message says.
+
+    Examples
+    --------
+    >>> as_crs(31983).to_epsg()
+    31983
+    """
+    try:
+        return _as_crs(crs, name)
+    except CRSError:
+        if crs is not None:
+            # "not a CRS that PROJ knows" is every CRS when PROJ has no database
+            _proj.check_database()
+        raise
+
+
+def _network_hint():
+    """A sentence naming PROJ_NETWORK when it is on: PROJ then fetches grids it lacks, and a
+    grid it could not fetch gives no number (inf or nan)."""
+    import pyproj.network
+
+    if pyproj.network.is_network_enabled() or str(
+            os.environ.get("PROJ_NETWORK", "")).upper() in ("ON", "YES", "TRUE", "1"):
+        return _(" PROJ_NETWORK is ON: PROJ fetches the grids it lacks from the network, and "
+                 "a grid it could not fetch gives no number; turn PROJ_NETWORK off (rsgeo "
+                 "ships its grids) or install the grids PROJ needs (projsync).")
+    return ""
+
 
 # EPSG:15485, "SAD69 to SIRGAS 2000 (1)": geocentric translations in metres (accuracy 5 m)
 SAD69_TO_SIRGAS2000 = (-67.35, 3.88, -38.22)
@@ -108,6 +156,13 @@ def _check_area(points, src, dst):
         outside = _outside_area(lon, lat, area)
         if outside.any():
             first = int(np.flatnonzero(outside)[0])
+            if not (np.isfinite(lon[first]) and np.isfinite(lat[first])):
+                raise CRSError(_(
+                    "PROJ gave no longitude and latitude (inf or nan) for point {first} "
+                    "({x:.6g}, {y:.6g}) in {src}, so rsgeo cannot check it against the CRSs' "
+                    "areas of use; give points in src_crs's own coordinates and units.").format(
+                        first=first, x=points[first, 0], y=points[first, 1],
+                        src=_crs_name(src)) + _network_hint())
             raise CRSError(_(
                 "{count} of {n} points are outside the area of use of {crs} (longitude "
                 "{west:g} to {east:g}, latitude {south:g} to {north:g}; first: point {first} "
@@ -128,8 +183,8 @@ def _lon_lat(points, crs):
     _refuse_far_coordinates(points, crs)
     try:
         with np.errstate(all="ignore"):
-            return tuple(np.asarray(v, dtype=np.float64)
-                         for v in transform(crs, "EPSG:4326", points[:, 0], points[:, 1]))
+            lon, lat = (np.asarray(v, dtype=np.float64)
+                        for v in transform(crs, "EPSG:4326", points[:, 0], points[:, 1]))
     except Exception:                  # GDAL refuses the batch: point by point, failures NaN
         lon, lat = np.full(len(points), np.nan), np.full(len(points), np.nan)
         for k, (x, y) in enumerate(points):
@@ -138,7 +193,18 @@ def _lon_lat(points, crs):
                     (lon[k],), (lat[k],) = transform(crs, "EPSG:4326", [x], [y])
             except Exception:
                 pass
-        return lon, lat
+    lost = ~(np.isfinite(lon) & np.isfinite(lat))
+    if lost.any():
+        # GDAL's PROJ gives no number where it wanted a grid it could not fetch (PROJ_NETWORK
+        # on, no network): rsgeo's own PROJ, offline with its grids, is asked there
+        try:
+            with np.errstate(all="ignore"):
+                again = _proj.transformer(_wkt(crs), _wkt(_as_crs("EPSG:4326"))).transform(
+                    points[lost, 0], points[lost, 1])
+            lon[lost], lat[lost] = (np.asarray(v, dtype=np.float64) for v in again)
+        except Exception:              # pyproj's ProjError: left NaN, refused by the caller
+            pass
+    return lon, lat
 
 
 # PROJ parameters of the datum, not of the projection (a datum shift changes only these)
@@ -239,7 +305,9 @@ def _describe(operation, available=True):
     codes = tuple(code for code in (_authority_code(step.to_json_dict().get("id"))
                                     for step in datum_steps) if code is not None)
     found = [grid for step in steps for grid in getattr(step, "grids", [])]
-    grids = tuple(dict.fromkeys(grid.short_name for grid in found))
+    # the shipped grids an operation built by rsgeo._proj reads by their path
+    by_path = getattr(operation, "grid_paths", {})
+    grids = tuple(dict.fromkeys(os.path.basename(grid.short_name) for grid in found))
     try:
         pipeline = operation.to_proj4() or ""
     except Exception:                 # pyproj's ProjError: an operation PROJ cannot write
@@ -247,11 +315,14 @@ def _describe(operation, available=True):
     for grid in found:
         if grid.available and grid.full_name:
             pipeline = pipeline.replace(f"={grid.short_name}", f"={grid.full_name}")
+        elif grid.short_name in by_path:
+            pipeline = pipeline.replace(f"={grid.short_name}", f"={by_path[grid.short_name]}")
     accuracy = float(operation.accuracy)
     box = operation.area_of_use
     area = None if box is None else (box.west, box.south, box.east, box.north)
     return Transformation(" + ".join(names), codes, accuracy if accuracy >= 0 else None, grids,
-                          bool(available and all(grid.available for grid in found)), area,
+                          bool(available and all(grid.available or grid.short_name in by_path
+                                                  for grid in found)), area,
                           pipeline)
 
 
@@ -391,7 +462,7 @@ def _apply(transformer, points, src, dst):
     if not np.isfinite(result).all():
         raise CRSError(_("PROJ could not transform some points from {src} to {dst} "
                          "(outside the CRS's area of use, or outside a grid's coverage?)").format(
-                             src=_crs_name(src), dst=_crs_name(dst)))
+                             src=_crs_name(src), dst=_crs_name(dst)) + _network_hint())
     return result
 
 

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._atomic import replacing
 from .accuracy import residuals
 from .errors import CRSError, DataError, GCPError
 from .language import _
@@ -300,9 +301,10 @@ def read_points(path):
     Raises
     ------
     DataError
-        If the file is not text, the header lacks the needed columns, a value
+        If the file is not text, the header lacks the needed columns, a line
+        has fewer fields than the header (a file cut short ends so), a value
         is not a number, an ``enable`` value is not a flag, or the file holds
-        no GCP.
+        no GCP. The message names the file and the line, counted in the file.
     """
     try:
         with open(path, encoding="utf-8-sig") as handle:
@@ -315,16 +317,20 @@ def read_points(path):
                           "file QGIS's Georeferencer saved").format(path=path))
     # line breaks as QGIS and the csv module know them: not str.splitlines's extra Unicode
     # separators (U+2028, U+0085, form feed ...), which an id or a note may hold
-    lines = [line.rstrip("\r\n") for line in io.StringIO(text, newline="")]
+    # each line with its number in the file, for messages that point at it
+    lines = list(enumerate((line.rstrip("\r\n") for line in io.StringIO(text, newline="")),
+                           start=1))
     crs = None
-    if lines and lines[0].startswith("#CRS:"):
-        crs = lines.pop(0)[len("#CRS:"):].strip() or None
-    lines = [line for line in lines if line.strip() and not line.startswith("#")]
+    if lines and lines[0][1].startswith("#CRS:"):
+        crs = lines.pop(0)[1][len("#CRS:"):].strip() or None
+    lines = [(number, line) for number, line in lines
+             if line.strip() and not line.startswith("#")]
     if not lines:
         raise DataError(_("{path}: no header and no GCPs; a .points file needs a header "
                           "line").format(path=path))
-    delimiter = "\t" if "\t" in lines[0] else ","
-    reader = csv.DictReader(io.StringIO("\n".join(lines)), delimiter=delimiter)
+    numbers = [number for number, _line in lines]
+    delimiter = "\t" if "\t" in lines[0][1] else ","
+    reader = csv.DictReader((line + "\n" for _number, line in lines), delimiter=delimiter)
     header = [name.strip() for name in reader.fieldnames]
     reader.fieldnames = header
     source_x = "sourceX" if "sourceX" in header else "pixelX"
@@ -335,7 +341,18 @@ def read_points(path):
                           "mapX,mapY,sourceX,sourceY,enable").format(
                 path=path, header=header, sorted=sorted(missing)))
     map_xy, image_xy, enabled, ids, notes = [], [], [], [], []
-    for number, row in enumerate(reader, start=2):
+    for row in reader:
+        number = numbers[reader.line_num - 1]        # the row's last line, counted in the file
+        missing = [name for name in header if row.get(name) is None]
+        if missing:
+            # a file cut short (a writer killed, a copy interrupted) ends in such a line, whose
+            # last number may be cut too: reading it would give wrong or missing GCPs
+            raise DataError(_(
+                "{path}, line {number}: the line has {count} of the header's {total} fields "
+                "({missing} missing), as a file cut short ends; write the file again, or give "
+                "the line all its fields").format(
+                    path=path, number=number, count=len(header) - len(missing),
+                    total=len(header), missing=", ".join(missing)))
         try:
             map_xy.append((float(row["mapX"]), float(row["mapY"])))
             image_xy.append((float(row[source_x]), -float(row[source_y])))
@@ -408,7 +425,8 @@ def write_points(path, gcps, model=None):
         The file to write.
     gcps : GCPSet
     model : callable, optional
-        Map -> image model whose residuals fill dX, dY and residual.
+        Map -> image model whose residuals fill dX, dY and residual: given
+        the (n, 2) map (x, y), it returns the (n, 2) image (col, row).
 
     Returns
     -------
@@ -417,25 +435,38 @@ def write_points(path, gcps, model=None):
     Raises
     ------
     TypeError
-        If ``gcps`` is not a :class:`GCPSet`.
+        If ``gcps`` is not a :class:`GCPSet`, or ``model`` is not callable.
     GCPError
         If ``gcps`` holds no GCP (:func:`read_points` refuses a file without
-        points), or an id or a note holds a line break (``"\\n"``, ``"\\r"``)
-        or a NUL character; as :func:`rsgeo.accuracy.residuals`.
+        points), an id or a note holds a line break (``"\\n"``, ``"\\r"``)
+        or a NUL character, or ``model`` returns anything but (n, 2) numbers.
     DataError
-        If ``path`` lies inside rsgeo's own data folder, or its folder does not
-        exist.
+        If ``path`` lies inside rsgeo's own data folder, its folder does not
+        exist or no file can be created in it, or ``path`` is a folder or a
+        read-only file.
+
+    Notes
+    -----
+    Nothing is lost: every argument is checked first, and the file is written
+    whole to a hidden temporary file beside ``path`` and then renamed onto it
+    in one atomic step (``os.replace``). A refused call, a failure or an
+    interrupted process leaves an existing ``path`` as it was; two processes
+    writing one ``path`` leave one of their files, complete, never a mix.
     """
     if not isinstance(gcps, GCPSet):
         raise TypeError(_("gcps must be a GCPSet (map_xy, image_xy, enabled), got {kind}").format(
                 kind=type(gcps).__name__))
     _check_one_line(gcps)
     if model is not None:
-        dx, dy, distance = residuals(model, gcps.map_xy, gcps.image_xy)
+        dx, dy = _model_residuals(model, gcps)
+        distance = np.hypot(dx, dy)
     else:
         dx = dy = distance = np.zeros(len(gcps))
     _check_writable(path)
-    with open(path, "w", encoding="utf-8", newline="") as handle:
+    # written whole beside the target, then renamed onto it: a killed writer leaves the old file,
+    # and of two writers of one name the last rename wins with its complete file
+    with replacing(path) as temporary, open(temporary, "w", encoding="utf-8",
+                                            newline="") as handle:
         if gcps.crs:
             # QGIS reads the CRS from the first line only: a multi-line WKT goes on one line
             one_line = " ".join(part.strip() for part in str(gcps.crs).splitlines())
@@ -448,3 +479,26 @@ def write_points(path, gcps, model=None):
             writer.writerow([repr(float(v)) for v in values]
                             + [int(gcps.enabled[i]), repr(float(dx[i])), repr(float(-dy[i])),
                                repr(float(distance[i])), gcps.ids[i], gcps.notes[i]])
+
+
+def _model_residuals(model, gcps):
+    """dx, dy (model - GCP, pixels) of a map -> image model, whose output must be (n, 2)."""
+    if not callable(model):
+        raise TypeError(_("model must be a map -> image model (a callable, as GCPSet.fit "
+                          "returns), got {kind}").format(kind=type(model).__name__))
+    predicted = model(gcps.map_xy)
+    try:
+        # a wrong shape would broadcast against the GCPs into residuals that mean nothing
+        predicted = np.asarray(predicted, dtype=np.float64)
+    except (TypeError, ValueError):
+        predicted = None
+    expected = (len(gcps), 2)
+    if predicted is None or predicted.shape != expected:
+        got = (_("values that are not numbers") if predicted is None
+               else _("shape {shape}").format(shape=predicted.shape))
+        raise GCPError(_(
+            "model returned {got} for the {n} GCPs' map (x, y); write_points needs their image "
+            "(col, row), shape {expected}: give a map -> image model such as "
+            "gcps.fit(order) returns").format(got=got, n=len(gcps), expected=expected))
+    difference = predicted - gcps.image_xy
+    return difference[:, 0], difference[:, 1]

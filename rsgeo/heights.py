@@ -27,8 +27,8 @@ from functools import cache
 import numpy as np
 
 from ._proj import GRIDS, transformer
-from .errors import DataError, GridError
-from .language import _
+from .errors import CRSError, DataError, GridError
+from .language import _, prose_number
 
 __all__ = ["GEOIDS", "VERTICAL_DATUMS", "geoid_undulation", "geoid_coverage",
            "geoid_on_grid", "add_geoid", "to_ellipsoidal", "check_vertical"]
@@ -40,6 +40,22 @@ GEOIDS = {"EGM96": ("EPSG:4979", "EPSG:4326+5773", "egm96_15.gtx")}
 
 #: What a DEM's heights can be above: the ellipsoid itself or one of :data:`GEOIDS`.
 VERTICAL_DATUMS = ("ellipsoidal", *GEOIDS)
+
+# The most cells geoid_on_grid computes (2**30: 8 GiB of float64 N); a larger grid is refused
+# with its size rather than left to fail in NumPy's allocation (a MemoryError of terabytes)
+_MAX_GRID_CELLS = 2 ** 30
+
+
+def _numbers(value, name):
+    """``value`` as a float64 array; strings and booleans are refused, not read as numbers."""
+    array = np.asarray(value)
+    if array.dtype.kind not in "iuf":
+        kind = (_("text") if array.dtype.kind in "US" else _("booleans")
+                if array.dtype.kind == "b" else type(value).__name__)
+        raise TypeError(_("{name} must be numbers (degrees or metres), got {kind} {value!r}; "
+                          "give int or float values, not text or True/False").format(
+                              name=name, kind=kind, value=value))
+    return array.astype(np.float64)
 
 
 def geoid_coverage(geoid="EGM96"):
@@ -113,6 +129,8 @@ def geoid_undulation(lon, lat, geoid="EGM96"):
     GridError
         If a point is outside the shipped grid (:func:`geoid_coverage`): PROJ would return
         N = 0 there without a word, a silent error of up to 100 m.
+    TypeError
+        If ``lon`` or ``lat`` is text or a boolean, not numbers.
 
     Examples
     --------
@@ -120,24 +138,32 @@ def geoid_undulation(lon, lat, geoid="EGM96"):
     -15.03
     """
     src, dst, _name = _geoid(geoid)
-    lon, lat = _inside(lon, lat, geoid)
+    lon, lat = _inside(_numbers(lon, "lon"), _numbers(lat, "lat"), geoid)
     if lon.size == 0:
         return np.zeros(lon.shape)
     proj = transformer(src, dst)
     _x, _y, height = proj.transform(lon.ravel(), lat.ravel(), np.zeros(lon.size))
     used = proj.get_last_used_operation()
-    if geoid not in used.description:
+    # PROJ's ballpark (N = 0 everywhere) names EGM96 too: the grid must be what was applied
+    if geoid not in used.description or "ballpark" in used.description.lower():
         raise DataError(_(
             "PROJ did not apply the {geoid} grid (it used {operation!r}); is {name} in "
             "rsgeo/data/proj?").format(geoid=geoid, operation=used.description, name=_name))
+    height = np.asarray(height, dtype=np.float64)
+    if not np.isfinite(height).all():
+        raise CRSError(_(
+            "PROJ gave no geoid height (inf or nan) at {count} of {n} points with the {geoid} "
+            "grid {name}: the grid could not be read; reinstall rsgeo, whose "
+            "rsgeo/data/proj holds it").format(count=int((~np.isfinite(height)).sum()),
+                                                n=height.size, geoid=geoid, name=_name))
     # the height above the geoid of a point on the ellipsoid (h = 0) is H = -N
-    return -np.asarray(height, dtype=np.float64).reshape(lon.shape)
+    return -height.reshape(lon.shape)
 
 
 def _inside(lon, lat, geoid):
     """lon and lat as float64 arrays of one shape, refused if a point is outside the grid."""
-    lon = np.asarray(lon, dtype=np.float64)
-    lat = np.asarray(lat, dtype=np.float64)
+    lon = _numbers(lon, "lon")
+    lat = _numbers(lat, "lat")
     if lon.shape != lat.shape:
         raise GridError(_("lon and lat must have the same shape, got {a} and {b}").format(
             a=lon.shape, b=lat.shape))
@@ -203,7 +229,8 @@ def geoid_on_grid(transform, shape, crs=None, geoid="EGM96"):
     Raises
     ------
     GridError
-        If a cell centre is outside the shipped grid (:func:`geoid_coverage`).
+        If a cell centre is outside the shipped grid (:func:`geoid_coverage`), or the grid
+        has more than 2**30 cells (8 GiB of N).
     TypeError, ValueError
         If the transform, shape or CRS is not one (as :func:`rsgeo.data.save` reads them).
 
@@ -216,7 +243,17 @@ def geoid_on_grid(transform, shape, crs=None, geoid="EGM96"):
     """
     from .validation import as_shape
 
-    return add_geoid(np.zeros(as_shape(shape, "shape")), transform, crs, geoid)
+    if transform is None:
+        raise GridError(_("transform is None; give the grid's affine.Affine (pixel corner -> "
+                          "map)"))
+    rows, cols = as_shape(shape, "shape")
+    if rows * cols > _MAX_GRID_CELLS:
+        raise GridError(_(
+            "shape {shape} is {cells:,} cells, more than the {limit:,} geoid_on_grid computes "
+            "(8 GiB of float64): give a smaller grid, or add N strip by strip of rows").format(
+                shape=(rows, cols), cells=prose_number(rows * cols),
+                limit=prose_number(_MAX_GRID_CELLS)))
+    return add_geoid(np.zeros((rows, cols)), transform, crs, geoid)
 
 
 def add_geoid(heights, transform, crs, geoid):
@@ -241,7 +278,8 @@ def add_geoid(heights, transform, crs, geoid):
     ndarray
         ``heights``, changed.
     """
-    from .validation import as_affine, as_crs
+    from .crs import as_crs
+    from .validation import as_affine
 
     _geoid(geoid)
     gt = as_affine(transform, "transform", gdal_tuple=True)
@@ -261,7 +299,25 @@ def add_geoid(heights, transform, crs, geoid):
     return heights
 
 
-def check_vertical(vertical, name="vertical"):
+def _stated_vertical(crs):
+    """What a CRS says its heights are above: a geoid of :data:`GEOIDS`, "ellipsoidal" (a 3-D
+    geographic CRS), another vertical datum's name, or None when it says nothing (2-D)."""
+    from pyproj import CRS
+
+    try:
+        crs = CRS.from_wkt(crs.to_wkt()) if hasattr(crs, "to_wkt") else CRS.from_user_input(crs)
+    except Exception:                 # pyproj's CRSError: nothing it can say
+        return None
+    if crs.is_compound:
+        vertical = crs.sub_crs_list[-1]
+        names = f"{vertical.name} {vertical.datum.name if vertical.datum else ''}"
+        return next((geoid for geoid in GEOIDS if geoid in names), vertical.name)
+    if crs.is_geographic and len(crs.axis_info) == 3:
+        return "ellipsoidal"
+    return None
+
+
+def check_vertical(vertical, name="vertical", crs=None, crs_name="crs"):
     """``vertical`` if it is one of :data:`VERTICAL_DATUMS`, else a GridError that asks.
 
     Parameters
@@ -270,6 +326,12 @@ def check_vertical(vertical, name="vertical"):
         What heights are above: "ellipsoidal" or a geoid ("EGM96").
     name : str
         The argument's name, for the message.
+    crs : rasterio.crs.CRS or str, optional
+        The heights' CRS: when it states a vertical datum (a compound CRS such as
+        ``"EPSG:4326+5773"``, WGS 84 + EGM96 height, or a 3-D geographic CRS), it must be
+        ``vertical``'s.
+    crs_name : str
+        The CRS argument's name, for the message.
 
     Returns
     -------
@@ -279,19 +341,31 @@ def check_vertical(vertical, name="vertical"):
     ------
     GridError
         If ``vertical`` is None or not one of :data:`VERTICAL_DATUMS`.
+    CRSError
+        If ``crs`` states another vertical datum than ``vertical``.
 
     Examples
     --------
     >>> check_vertical("EGM96")
     'EGM96'
+    >>> check_vertical("EGM96", crs="EPSG:4326+5773")
+    'EGM96'
     """
-    if vertical not in VERTICAL_DATUMS:
+    if not isinstance(vertical, str) or vertical not in VERTICAL_DATUMS:
         raise GridError(_(
             "{name} must be one of {known}, got {vertical!r}: RPCs and GNSS take heights above "
             "the WGS 84 ellipsoid; say what the heights are above (SRTM and Copernicus DEMs "
             "are above a geoid, EGM96 or EGM2008, not the ellipsoid; rsgeo ships EGM96 over "
             "Brazil)").format(name=name, known=", ".join(repr(v) for v in VERTICAL_DATUMS),
                               vertical=vertical))
+    stated = None if crs is None else _stated_vertical(crs)
+    if stated is not None and stated != vertical:
+        raise CRSError(_(
+            "{name} is {vertical!r} but {crs_name} says the heights are above {stated!r}: "
+            "the two contradict each other; give {crs_name} without a vertical part (e.g. "
+            "'EPSG:4326') and say in {name} what the heights are above, or give the {name} "
+            "that {crs_name} states").format(name=name, vertical=vertical, crs_name=crs_name,
+                                             stated=stated))
     return vertical
 
 
@@ -315,7 +389,10 @@ def to_ellipsoidal(height, lon, lat, vertical):
     Raises
     ------
     GridError
-        If ``vertical`` is not one of :data:`VERTICAL_DATUMS`, or a point is outside the grid.
+        If ``vertical`` is not one of :data:`VERTICAL_DATUMS`, a point is outside the grid,
+        or ``lon`` and ``lat`` are not of ``height``'s shape.
+    TypeError
+        If a value is text or a boolean, not a number.
 
     Examples
     --------
@@ -324,10 +401,17 @@ def to_ellipsoidal(height, lon, lat, vertical):
     True
     """
     check_vertical(vertical)
-    height = np.asarray(height, dtype=np.float64)
+    height = _numbers(height, "height")
+    lon, lat = _numbers(lon, "lon"), _numbers(lat, "lat")
     if vertical == "ellipsoidal":
         return height.copy()
-    lon = np.broadcast_to(np.asarray(lon, dtype=np.float64), height.shape)
-    lat = np.broadcast_to(np.asarray(lat, dtype=np.float64), height.shape)
+    try:
+        lon = np.broadcast_to(lon, height.shape)
+        lat = np.broadcast_to(lat, height.shape)
+    except ValueError:
+        raise GridError(_(
+            "height, lon and lat must have one shape (a height per point), got height "
+            "{height}, lon {lon} and lat {lat}").format(
+                height=height.shape, lon=lon.shape, lat=lat.shape)) from None
     return height + geoid_undulation(lon, lat, vertical)
 

@@ -41,10 +41,15 @@ LOCALE_DIR = Path(__file__).parent / "locale"
 DOMAIN = "rsgeo"
 
 _chosen = None
+# the unknown language names already warned about (each once per process)
+_warned = set()
 
 
 def _normalise(language, source):
-    """``language`` as one of :data:`LANGUAGES` ("pt-BR", "pt", "pt_BR.UTF-8" -> "pt_BR")."""
+    """``language`` as one of :data:`LANGUAGES` ("pt-BR", "pt", "pt_BR.UTF-8" -> "pt_BR").
+
+    Raises RsgeoError for a language rsgeo does not speak; :func:`_speakable` falls back.
+    """
     if not isinstance(language, str):
         raise TypeError(f"{source} must be a language name such as 'pt_BR', "
                         f"got {type(language).__name__} {language!r}")
@@ -56,6 +61,32 @@ def _normalise(language, source):
         return "pt_BR"
     raise RsgeoError(f"{source} is {language!r}, a language rsgeo does not speak: "
                      f"use one of {', '.join(LANGUAGES)}")
+
+
+def _speakable(language, source):
+    """``language`` as one of :data:`LANGUAGES`, never an error for a name rsgeo lacks.
+
+    Another Portuguese (``pt_PT``) is spoken as Brazilian Portuguese, the one rsgeo has (its
+    decimal comma is the same); any other language as English. Either way a UserWarning
+    names the value and the languages rsgeo speaks, once per value: a message must reach
+    its reader whatever ``RSGEO_LANG`` holds.
+    """
+    if not isinstance(language, str):
+        language = str(language)
+    try:
+        return _normalise(language, source)
+    except RsgeoError:
+        pass
+    lowered = language.split(".")[0].split("@")[0].replace("-", "_").strip().lower()
+    spoken = "pt_BR" if lowered.startswith("pt_") else "en"
+    if (source, language) not in _warned:
+        _warned.add((source, language))
+        import warnings
+
+        warnings.warn(f"{source} is {language!r}, a language rsgeo does not speak; rsgeo "
+                      f"speaks {', '.join(LANGUAGES)} and uses {spoken!r}", UserWarning,
+                      stacklevel=4)
+    return spoken
 
 
 def set_language(language=None):
@@ -102,10 +133,11 @@ def get_language():
         One of :data:`LANGUAGES`: the one given to :func:`set_language`, else the
         environment variable ``RSGEO_LANG``, else ``"en"``.
 
-    Raises
-    ------
-    ValueError
-        If ``RSGEO_LANG`` names a language rsgeo does not speak.
+    Warns
+    -----
+    UserWarning
+        Once, if ``RSGEO_LANG`` names a language rsgeo does not speak: another Portuguese
+        (``pt_PT``) is spoken as ``pt_BR``, any other language as English.
 
     Examples
     --------
@@ -115,7 +147,7 @@ def get_language():
     """
     if _chosen is not None:
         return _chosen
-    return _normalise(os.environ.get(ENVIRONMENT_VARIABLE, "en"), ENVIRONMENT_VARIABLE)
+    return _speakable(os.environ.get(ENVIRONMENT_VARIABLE, "en"), ENVIRONMENT_VARIABLE)
 
 
 def resolve_language(language):
@@ -191,10 +223,11 @@ def translate(message, language=None, domain=DOMAIN, locale_dir=LOCALE_DIR):
     str
         The translation, or ``message`` itself when the catalogue has none.
 
-    Raises
-    ------
-    ValueError
-        If ``language`` (or ``RSGEO_LANG``) is not a language rsgeo speaks.
+    Warns
+    -----
+    UserWarning
+        Once per value, if ``language`` (or ``RSGEO_LANG``) is not a language rsgeo speaks:
+        the message is then given in English (in ``pt_BR`` for another Portuguese).
 
     Examples
     --------
@@ -206,7 +239,8 @@ def translate(message, language=None, domain=DOMAIN, locale_dir=LOCALE_DIR):
     >>> translate("", "pt_BR")
     ''
     """
-    language = resolve_language(language)
+    # a message must reach its reader: an unknown language warns and falls back (_speakable)
+    language = get_language() if language is None else _speakable(language, "language")
     if not message:                     # gettext("") is the catalogue's header, not a message
         return message
     return catalogue(language, domain, locale_dir).gettext(message)

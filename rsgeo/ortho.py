@@ -31,12 +31,13 @@ otherwise.
 """
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from ._grids import as_gdal, gdal_inverse, grid_centres, is_lon_lat, to_crs
-from ._kernels import numba_threads
+from ._kernels._rows import run_in_row_blocks
 from ._kernels.dem import dem_height_at
 from ._kernels.rpc import rpc_point
+from ._numba_cache import CACHE
 from .dem import prepare_dem, raise_dem_problems, sample_dem
 from .errors import GridError, ImageError
 from .language import _, prose_number
@@ -63,9 +64,9 @@ __all__ = ["orthorectify", "map_on_grid", "positional_error"]
 _OUTSIDE_DEM, _OVER_HOLE, _BAD_LON_LAT, _SEES_IMAGE = range(4)
 
 
-@njit(cache=True, parallel=True, error_model="numpy")
+@njit(cache=CACHE, nogil=True, error_model="numpy")
 def _ortho_positions(dst_gt, first_row, width, lon, lat, dem_x, dem_y, dem, inverse, rpc,
-                     image_width, image_height, cols, rows, counts):
+                     image_width, image_height, cols, rows, counts, first_i, stop_i):
     """One strip of orthorectify in one compiled pass: each cell's DEM height and RPC position.
 
     Cell (i, j) of the strip (output row ``first_row + i``) is at flat index
@@ -75,17 +76,18 @@ def _ortho_positions(dst_gt, first_row, width, lon, lat, dem_x, dem_y, dem, inve
     ``dem_y`` (a DEM in another CRS) or, when empty, at the longitude and latitude. The RPC's
     (col, row) go to ``cols``, ``rows``. ``counts[i]`` gets row i's cells outside the DEM,
     over a DEM hole, with a longitude or latitude out of range (their position is set to
-    (-1, -1), outside the image), and whose position falls inside the image.
+    (-1, -1), outside the image), and whose position falls inside the image. Only the strip's
+    rows ``first_i`` to ``stop_i - 1`` are computed: threads share the strip's rows
+    (``rsgeo._kernels._rows``). Returns 0.
 
     Each row goes in passes: coordinates, heights (the DEM's branches), then the RPC over the
     whole row, a loop without branches that the compiler turns into vector instructions
     (several cells per instruction, each cell's operations unchanged: error_model="numpy"
     lets a division by zero give infinity, as in C, instead of testing every division).
     """
-    n_rows = counts.shape[0]
     geographic_grid = lon.size == 0
     dem_on_lon_lat = dem_x.size == 0
-    for i in prange(n_rows):
+    for i in range(first_i, stop_i):
         # the row's views, indexed from 0 (an index known not to be negative spares Numba's
         # wrap-around test, which kept the RPC's loop from vector instructions)
         first, stop = i * width, (i + 1) * width
@@ -130,6 +132,7 @@ def _ortho_positions(dst_gt, first_row, width, lon, lat, dem_x, dem_y, dem, inve
         counts[i, _OVER_HOLE] = holed
         counts[i, _BAD_LON_LAT] = bad
         counts[i, _SEES_IMAGE] = seen
+    return 0
 
 
 def _strip_coordinates(dst_gt, shape, start, stop, dst_crs, dem_crs, every=False):
@@ -273,7 +276,8 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     dst_gt = as_gdal(dst_transform, "dst_transform")
     dst_crs = as_crs("EPSG:4326" if dst_crs is None else dst_crs, "dst_crs")
     dem_crs = as_crs("EPSG:4326" if dem_crs is None else dem_crs, "dem_crs")
-    check_vertical(dem_vertical, "dem_vertical")
+    # a compound dem_crs states the DEM's vertical datum itself: refused if it contradicts
+    check_vertical(dem_vertical, "dem_vertical", dem_crs, "dem_crs")
     prepared = prepare_dem(dem, dem_transform, dem_nodata)
     if dem_vertical != "ellipsoidal":
         # The RPC takes h = H + N. N is added once at the DEM's own cells and then interpolated
@@ -302,10 +306,14 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         # empty arrays tell the compiled pass to take the grid's or the DEM's own coordinates
         lon, lat, dem_x, dem_y = _strip_coordinates(dst_gt, shape, start, stop, dst_crs,
                                                     dem_crs)
-        with numba_threads(num_threads):
-            _ortho_positions(dst_gt, start, shape[1], lon, lat, dem_x, dem_y, dem_work,
-                             dem_inverse, packed, width, height, cols, rows,
-                             counts[:stop - start])
+        strip_counts = counts[:stop - start]
+
+        def strip_rows_positions(first, last, start=start, lon=lon, lat=lat, dem_x=dem_x,
+                                 dem_y=dem_y, strip_counts=strip_counts):
+            return _ortho_positions(dst_gt, start, shape[1], lon, lat, dem_x, dem_y, dem_work,
+                                    dem_inverse, packed, width, height, cols, rows,
+                                    strip_counts, first, last)
+        run_in_row_blocks(strip_rows_positions, stop - start, num_threads)
         found = counts[:stop - start].sum(axis=0)
         if found[_OUTSIDE_DEM] or found[_OVER_HOLE]:
             # the NumPy path of dem_height over this strip, for the messages' counts and

@@ -15,7 +15,9 @@ import numpy as np
 from .errors import RsgeoError
 from .language import _, prose_number
 from .validation import (
+    as_broadcast,
     as_finite,
+    as_number,
     few_values,
 )
 
@@ -51,8 +53,9 @@ def relief_displacement(height_m, view_zenith_deg):
     >>> round(float(relief_displacement(100.0, 45.0)), 6)
     100.0
     """
-    height = as_finite(height_m, "height_m")
-    angle = as_finite(view_zenith_deg, "view_zenith_deg")
+    height, angle = as_broadcast([as_finite(height_m, "height_m"),
+                                  as_finite(view_zenith_deg, "view_zenith_deg")],
+                                 ["height_m", "view_zenith_deg"])
     if np.any((angle < 0) | (angle >= 90)):
         raise RsgeoError(_("view_zenith_deg must be in [0, 90) degrees (0 = nadir), got "
                            "{few}").format(few=few_values(angle[(angle < 0) | (angle >= 90)])))
@@ -89,9 +92,10 @@ def relief_displacement_photo(height_m, radial_distance_mm, flying_height_m):
     >>> relief_displacement_photo(50.0, 100.0, 4500.0)   # 1:30,000 with a 150 mm lens
     1.1111111111111112
     """
-    height = as_finite(height_m, "height_m")
-    radius = as_finite(radial_distance_mm, "radial_distance_mm")
-    flying = float(as_finite(flying_height_m, "flying_height_m"))
+    height, radius = as_broadcast([as_finite(height_m, "height_m"),
+                                   as_finite(radial_distance_mm, "radial_distance_mm")],
+                                  ["height_m", "radial_distance_mm"])
+    flying = as_number(flying_height_m, "flying_height_m")
     if np.any(radius < 0):
         raise RsgeoError(_("radial_distance_mm must be >= 0 (a distance from the "
                            "principal point), got {few}").format(
@@ -129,8 +133,8 @@ def height_error_budget(position_error_m, view_zenith_deg):
     >>> round(height_error_budget(10.0, 30.0), 2)
     17.32
     """
-    budget = float(as_finite(position_error_m, "position_error_m"))
-    angle = float(as_finite(view_zenith_deg, "view_zenith_deg"))
+    budget = as_number(position_error_m, "position_error_m")
+    angle = as_number(view_zenith_deg, "view_zenith_deg")
     if budget <= 0:
         raise RsgeoError(_("position_error_m must be > 0, got {budget:g}").format(
                 budget=prose_number(budget)))
@@ -187,7 +191,7 @@ def occluded(distance_m, height_m, view_zenith_deg):
     """
     distance = as_finite(distance_m, "distance_m")
     height = as_finite(height_m, "height_m")
-    angle = float(as_finite(view_zenith_deg, "view_zenith_deg"))
+    angle = as_number(view_zenith_deg, "view_zenith_deg")
     if distance.ndim != 1 or distance.shape != height.shape:
         raise RsgeoError(_("distance_m and height_m must be 1-D of the same length, got "
                            "shapes {a} and {b}").format(a=distance.shape, b=height.shape))

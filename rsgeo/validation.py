@@ -19,7 +19,7 @@ __all__ = [
     "as_resolution", "as_num_threads", "as_number", "as_integer", "as_finite", "check_choice",
     "as_crs",
     "as_output_shape", "as_affine", "memory_bytes", "as_lon_lat_height", "few_values",
-    "as_invertible_affine", "as_flags",
+    "as_invertible_affine", "as_flags", "as_broadcast",
 ]
 
 
@@ -170,8 +170,8 @@ def as_nodata(nodata, dtype):
         If ``nodata`` is not a real number (a bool, a string, a complex, an array).
     rsgeo.errors.ImageError
         If ``dtype`` is an integer type and ``nodata`` is not a finite whole
-        number inside its range, or ``dtype`` is float32 and ``nodata`` is
-        finite but beyond float32's largest value.
+        number inside its range, or ``dtype`` is float16 or float32 and ``nodata``
+        is finite but beyond its largest value (it would be stored as infinity).
 
     Examples
     --------
@@ -198,9 +198,14 @@ def as_nodata(nodata, dtype):
                                "integer in [{info_min}, {info_max}])").format(
                     nodata=nodata, dtype=dtype, info_min=info.min, info_max=info.max))
         return int(nodata)
-    if (dtype == np.float32 and math.isfinite(float(nodata))
-            and abs(nodata) > np.finfo(np.float32).max):
-        raise ImageError(_("nodata={nodata!r} does not fit dtype float32").format(nodata=nodata))
+    # a finite nodata beyond a narrow float's range would be stored as infinity; compared as
+    # Python floats, so that NumPy casts nothing (and warns of no overflow)
+    if (dtype.kind == "f" and dtype.itemsize < 8 and math.isfinite(float(nodata))
+            and abs(float(nodata)) > float(np.finfo(dtype).max)):
+        raise ImageError(_(
+            "nodata={nodata!r} does not fit dtype {dtype} (its largest finite value is "
+            "{high:g}; beyond it the value becomes inf); pick a value the dtype can hold").format(
+                nodata=nodata, dtype=dtype, high=float(np.finfo(dtype).max)))
     return nodata
 
 
@@ -451,6 +456,9 @@ def as_finite(values, name, error=RsgeoError):
 
     Raises
     ------
+    TypeError
+        If ``values`` are booleans, text or complex numbers: ``float(True)`` and
+        ``float("30")`` would read them as numbers, and a complex would lose its imaginary part.
     RsgeoError
         ``error``: if ``values`` are not numbers, or hold NaN or infinite values.
 
@@ -458,7 +466,12 @@ def as_finite(values, name, error=RsgeoError):
     --------
     >>> as_finite([1, 2.5], "height").tolist()
     [1.0, 2.5]
+    >>> as_finite("30", "view_zenith_deg")
+    Traceback (most recent call last):
+    ...
+    TypeError: view_zenith_deg must be a number or numbers, got str '30'
     """
+    _refuse_non_numbers(values, name)
     try:
         array = np.asarray(values, dtype=np.float64)
     except (TypeError, ValueError):
@@ -468,6 +481,22 @@ def as_finite(values, name, error=RsgeoError):
         raise error(_("{name} holds NaN or infinite values; every value must be finite")
                     .format(name=name))
     return array
+
+
+def _refuse_non_numbers(values, name):
+    """TypeError for booleans, text and complex numbers, which NumPy would take as numbers."""
+    try:
+        array = np.asarray(values)
+    except (TypeError, ValueError):
+        return                          # ragged: the float conversion says why
+    kind = array.dtype.kind
+    if kind == "O":
+        odd = any(isinstance(v, (bool, np.bool_, str, bytes, complex)) for v in array.flat)
+    else:
+        odd = kind in "bcUS"
+    if odd:
+        raise TypeError(_("{name} must be a number or numbers, got {kind} {value!r}").format(
+            name=name, kind=type(values).__name__, value=values))
 
 
 def as_integer(value, name, low=None, high=None, why=""):
@@ -647,7 +676,8 @@ def as_affine(transform, name="transform", gdal_tuple=False):
         If ``transform`` is not an ``affine.Affine`` (the message says how to
         convert a GDAL 6-tuple: ``affine.Affine.from_gdal(*t)``).
     rsgeo.errors.GridError
-        If it holds NaN or infinity.
+        If it holds NaN or infinity, or is singular (its determinant a e - b d is 0
+        to rounding: every cell would land on one line or point).
 
     Examples
     --------
@@ -672,6 +702,13 @@ def as_affine(transform, name="transform", gdal_tuple=False):
     if not np.isfinite(np.asarray(transform[:6], dtype=np.float64)).all():
         raise GridError(_("{name} holds NaN or infinity: {value!r}; every coefficient of a "
                           "geotransform must be finite").format(name=name, value=transform))
+    a, b, _c, d, e, _f = transform[:6]
+    # rank-deficient to rounding: all cells of a grid would fall on one line (or point)
+    if abs(a * e - b * d) <= 1e-12 * (abs(a * e) + abs(b * d)):
+        raise GridError(_("{name} {value!r} is singular (its determinant a e - b d is 0): it "
+                          "maps every cell onto one line or point; a geotransform or mapping "
+                          "needs a nonzero pixel width and height").format(
+                              name=name, value=transform))
     return transform
 
 
@@ -740,6 +777,46 @@ def few_values(values):
     return shown + (f" ... ({values.size} values)" if values.size > 5 else "")
 
 
+def as_broadcast(arrays, names, error=RsgeoError):
+    """Arrays broadcast to one shape, or an error naming each argument's shape.
+
+    Parameters
+    ----------
+    arrays : sequence of ndarray
+        Already checked (e.g. by :func:`as_finite`).
+    names : sequence of str
+        Their names, for the message.
+    error : type
+        The :class:`rsgeo.errors.RsgeoError` subclass to raise.
+
+    Returns
+    -------
+    list of ndarray
+        ``np.broadcast_arrays(*arrays)``.
+
+    Raises
+    ------
+    RsgeoError
+        ``error``: if the shapes do not broadcast (one value, or one per point, for each).
+
+    Examples
+    --------
+    >>> as_broadcast([np.zeros(3), np.zeros(2)], ["lon", "lat"])  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.RsgeoError: lon and lat must have one shape (or be single values), got ...
+    """
+    arrays = [np.asarray(a) for a in arrays]
+    try:
+        return np.broadcast_arrays(*arrays)
+    except ValueError:
+        shapes = ", ".join(f"{name} {array.shape}" for name, array in zip(names, arrays))
+        raise error(_("{names} must have one shape (or be single values), got {shapes}")
+                    .format(names=" and ".join([", ".join(names[:-1]), names[-1]]
+                                               if len(names) > 1 else names),
+                            shapes=shapes)) from None
+
+
 def as_lon_lat_height(lon, lat, height):
     """Longitudes, latitudes and heights checked (degrees, metres) and broadcast together.
 
@@ -772,7 +849,7 @@ def as_lon_lat_height(lon, lat, height):
         raise CRSError(_("lon must be in [-180, 360] degrees, got {few} (projected "
                          "metres given instead of degrees?)").format(
                 few=few_values(lon[(lon < -180) | (lon > 360)])))
-    return np.broadcast_arrays(lon, lat, height)
+    return as_broadcast([lon, lat, height], ["lon", "lat", "height"])
 
 
 def as_invertible_affine(transform, name):

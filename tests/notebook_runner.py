@@ -43,7 +43,7 @@ def skip_module_unless_ready(missing, what):
     pytest.skip(missing, allow_module_level=True)
 
 
-def execute_notebook(path, timeout=600, audit_figures=False):
+def execute_notebook(path, timeout=1800, audit_figures=False):
     """Execute a notebook top to bottom in its own folder; return it with outputs.
 
     The kernel talks to this process over Unix sockets in a private folder (IPC), not TCP ports,

@@ -273,6 +273,6 @@ def test_search_ranks_a_chapter_above_the_api_entries(language):
     program = (language_data + "\nconst results = " + json.dumps(results) + ";\n"
                "console.log(JSON.stringify(results.map((r) => Scorer.score(r))));")
     scores = json.loads(subprocess.run([node, "-e", program], capture_output=True, text=True,
-                                       check=True, timeout=60).stdout)
+                                       check=True, timeout=900).stdout)
     assert scores[1] > scores[0], scores
     assert scores[2] == 5, "the API page itself (its prose) keeps its score"

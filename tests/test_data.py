@@ -233,3 +233,23 @@ def test_every_proj_grid_is_documented_with_its_checksum():
                for path in sorted((folder / "proj").iterdir()) if path.is_file()}
     assert shipped == documented
     assert set(shipped) == {"br_ibge_SAD69_003.tif", "br_ibge_SAD96_003.tif", "egm96_15.gtx"}
+
+
+def test_save_keeps_a_good_nodata_and_a_float16_one_that_fits(tmp_path):
+    import rasterio
+
+    ramp = np.arange(12, dtype=np.uint8).reshape(3, 4)
+    for array, nodata in ((ramp, 255), (ramp.astype(np.float16), 65504.0),
+                          (ramp.astype(np.float32), float("nan"))):
+        with rasterio.open(data.save(tmp_path / "x.tif", array, nodata=nodata)) as dataset:
+            assert dataset.nodata == nodata or (np.isnan(nodata) and np.isnan(dataset.nodata))
+
+
+def test_save_names_the_band_count_a_geotiff_cannot_hold(tmp_path):
+    # rasterio's own error was "Attempt to create 1x1x70000 TIFF file"; count=0 was GDAL's
+    from rsgeo.errors import ImageError
+
+    for bands in (0, 65536):
+        with pytest.raises(ImageError, match=f"array has {bands} bands .*from 1 to 65535"):
+            data.save(tmp_path / "x.tif", np.zeros((bands, 1, 1), np.uint8))
+    assert not (tmp_path / "x.tif").exists()

@@ -279,3 +279,49 @@ def test_gcpset_to_crs_is_transform_points():
     gcps = data.load_gcps("cbers2b_ccd_hrc")
     np.testing.assert_array_equal(gcps.to_crs("EPSG:31981").map_xy,
                                   crs.transform_points(gcps.map_xy, gcps.crs, "EPSG:31981"))
+
+
+# -- rsgeo's grids by path are PROJ's grids on its search path, bit for bit ------------------
+
+PROJ_WITH_THE_GRIDS = """
+import json, sys
+import numpy as np
+import pyproj
+from rsgeo import _proj
+
+rng = np.random.default_rng(7)
+pairs = [("EPSG:29191", "EPSG:31981"), ("EPSG:4618", "EPSG:4674"), ("EPSG:5527", "EPSG:4674"),
+         ("EPSG:4618", "EPSG:5527"), ("EPSG:4674", "EPSG:4618"), ("EPSG:29193", "EPSG:4326"),
+         ("EPSG:4979", "EPSG:4326+5773")]
+cases = []
+for src, dst in pairs:
+    crs = pyproj.CRS(src)
+    lon, lat = rng.uniform(-78, -28, 3000), rng.uniform(-38, 8, 3000)
+    x, y = pyproj.Transformer.from_crs(crs.geodetic_crs, crs, always_xy=True).transform(lon, lat)
+    args = (x, y) if "5773" not in dst else (x, y, np.zeros_like(x))
+    cases.append((src, dst, args))
+# rsgeo's first, then PROJ's own with the grid folder on its search path (this process only)
+ours = [np.array(_proj.transformer(pyproj.CRS(s).to_wkt(), pyproj.CRS(d).to_wkt()).transform(
+    *a)) for s, d, a in cases]
+pyproj.datadir.append_data_dir(str(_proj.GRIDS))
+proj = [np.array(pyproj.Transformer.from_crs(pyproj.CRS(s).to_wkt(), pyproj.CRS(d).to_wkt(),
+                                             always_xy=True).transform(*a))
+        for s, d, a in cases]
+print(json.dumps([[s, d, bool(np.array_equal(o, p, equal_nan=True))]
+                  for (s, d, _a), o, p in zip(cases, ours, proj)]))
+"""
+
+
+def test_the_shipped_grids_by_path_give_what_proj_gives_with_them_on_its_path():
+    # rsgeo no longer puts its grid folder on PROJ's search path (a change to every later
+    # transformation of the process); its own choice between the operations, the grids read
+    # by their path, gives PROJ's numbers exactly, point by point, over Brazil and beyond
+    import json
+    import subprocess
+    import sys
+
+    run = subprocess.run([sys.executable, "-c", PROJ_WITH_THE_GRIDS], capture_output=True,
+                         text=True)
+    assert run.returncode == 0, run.stderr
+    results = json.loads(run.stdout)
+    assert [same for _src, _dst, same in results] == [True] * len(results), results

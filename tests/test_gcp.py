@@ -176,3 +176,56 @@ def test_no_gcps_and_a_missing_folder_are_refused(tmp_path):
     gcps = gcp.GCPSet([[0, 0], [1, 0]], [[0, 0], [1, 0]])
     with pytest.raises(gcp.DataError, match=r"folder .* does not exist .*nowhere.*mkdir"):
         gcp.write_points(tmp_path / "nowhere" / "g.points", gcps)
+
+
+def test_a_file_cut_short_mid_line_is_refused_with_the_file_and_the_line(tmp_path):
+    # a writer killed (or a copy interrupted) mid-line left a last line without all its fields,
+    # whose last number may be cut too: "-20.25" read as "-20.2" is a wrong GCP, not an error
+    gcps = gcp.GCPSet([[500000, 7400000], [500100, 7400000], [500000, 7400100]],
+                      [[10, 20.25], [20, 20], [10, 10]], crs="EPSG:31983")
+    whole = tmp_path / "whole.points"
+    gcp.write_points(whole, gcps)
+    text = whole.read_text()
+    last = text.rindex("\n", 0, -1) + 1                     # where line 5 (the third GCP) begins
+    assert text.count("\n") == 5 and text[last:].count(",") == 9
+    cut = tmp_path / "cut.points"
+    # every cut that leaves the last line short of a field: before its ninth comma
+    for end in range(last + 1, text.rindex(",") + 1):
+        cut.write_text(text[:end])
+        with pytest.raises(gcp.DataError, match=r"cut\.points, line 5: the line has \d of the "
+                                                r"header's 10 fields \(.*note missing\)"):
+            gcp.read_points(cut)
+    # cut after the last comma only the empty note and the line break are gone: nothing is lost
+    cut.write_text(text[:-1])
+    assert np.array_equal(gcp.read_points(cut).image_xy, gcps.image_xy)
+
+
+def test_a_short_line_in_a_qgis_file_is_refused_and_lines_are_counted_in_the_file(tmp_path):
+    path = tmp_path / "qgis.points"
+    path.write_text("#CRS: EPSG:31983\n"
+                    "mapX,mapY,sourceX,sourceY,enable,dX,dY,residual\n"
+                    "\n"
+                    "330000.5,7390000.25,10.5,-20.25,1,0.1,-0.2,0.22\n"
+                    "331000,7389000,110,-120,0,0\n"
+                    "332000,7391000,210,-20,1,0,0,0\n")
+    with pytest.raises(gcp.DataError, match=r"qgis\.points, line 5: the line has 6 of the "
+                                            r"header's 8 fields \(dY, residual missing\)"):
+        gcp.read_points(path)
+    # the same numbering for the other refusals: the #CRS line and blank lines count
+    path.write_text("#CRS: EPSG:31983\nmapX,mapY,sourceX,sourceY,enable\n\n"
+                    "500000,7400000,10,-20,maybe\n")
+    with pytest.raises(gcp.DataError, match="line 4: enable must be 1 or 0"):
+        gcp.read_points(path)
+
+
+def test_write_points_refuses_a_model_of_the_wrong_shape(tmp_path):
+    # a (n,) or (1, 2) answer broadcast against the GCPs into residuals that meant nothing
+    gcps = data.load_gcps("cbers2b_ccd_hrc")
+    model = gcps.fit(1)
+    for wrong in (lambda points: model(points)[:, 0], lambda points: model(points)[:1]):
+        with pytest.raises(gcp.GCPError, match=r"model returned shape \((14,|1, 2)\) for the "
+                                               r"14 GCPs' .*shape \(14, 2\).*gcps\.fit"):
+            gcp.write_points(tmp_path / "g.points", gcps, wrong)
+    assert not (tmp_path / "g.points").exists()
+    gcp.write_points(tmp_path / "g.points", gcps, model)
+    assert len(gcp.read_points(tmp_path / "g.points")) == 14

@@ -1,6 +1,6 @@
 """rsgeo.heights: the geoid undulation N, with PROJ and GDAL as the oracles.
 
-PROJ (pyproj, the shipped ``egm96_15.gtx`` on its search path) gives N through "WGS 84 to
+PROJ (pyproj, the shipped ``egm96_15.gtx`` read by its path) gives N through "WGS 84 to
 EGM96 height (1)"; GDAL's GTX driver (rasterio) reads the same grid file independently of
 rsgeo's own reader, which :func:`rsgeo.heights.geoid_on_grid` uses for speed.
 """
@@ -104,3 +104,42 @@ def test_the_module_docstring_states_the_grid_range():
     """heights' docstring says EGM96 over the shipped box goes from about -40 m to +50 m."""
     undulation = heights._grid("EGM96")[-1]
     assert -42 < undulation.min() < -38 and 48 < undulation.max() < 52
+
+
+# -- arguments refused with rsgeo's errors, naming them --------------------------------------
+
+def test_geoid_on_grid_refuses_a_missing_transform_and_a_huge_grid():
+    with pytest.raises(GridError, match="transform is None"):
+        heights.geoid_on_grid(None, (3, 4))
+    # 10**14 cells (728 TiB of N) are refused with their count, not left to NumPy's allocation
+    with pytest.raises(GridError, match=r"shape \(10000000, 10000000\) is "
+                                        r"100,000,000,000,000 cells, more than the "
+                                        r"1,073,741,824"):
+        heights.geoid_on_grid(affine.Affine(0.01, 0, -34.9, 0, -0.01, -7.95),
+                              (10 ** 7, 10 ** 7))
+
+
+def test_to_ellipsoidal_refuses_lengths_that_do_not_match_and_text():
+    with pytest.raises(GridError, match=r"height, lon and lat must have one shape.*height "
+                                        r"\(3,\), lon \(2,\)"):
+        heights.to_ellipsoidal([1.0, 2.0, 3.0], [-34.85, -34.8], [-8.0, -8.0], "EGM96")
+    with pytest.raises(TypeError, match="height must be numbers.*text '10'"):
+        heights.to_ellipsoidal("10", [-34.85], [-8.0], "EGM96")
+    with pytest.raises(TypeError, match="lon must be numbers.*booleans"):
+        heights.to_ellipsoidal([10.0], [True], [-8.0], "EGM96")
+    with pytest.raises(TypeError, match="lat must be numbers"):
+        heights.geoid_undulation([-34.85], ["-8"])
+
+
+def test_a_compound_crs_must_agree_with_the_vertical_datum_stated():
+    from rsgeo.errors import CRSError
+
+    assert heights.check_vertical("EGM96", crs="EPSG:4326+5773") == "EGM96"
+    assert heights.check_vertical("ellipsoidal", crs="EPSG:4326") == "ellipsoidal"
+    with pytest.raises(CRSError, match="dem_vertical is 'ellipsoidal' but dem_crs says the "
+                                       "heights are above 'EGM96'"):
+        heights.check_vertical("ellipsoidal", "dem_vertical", "EPSG:4326+5773", "dem_crs")
+    with pytest.raises(CRSError, match="above 'EGM2008 height'"):
+        heights.check_vertical("EGM96", crs="EPSG:4326+3855")
+    with pytest.raises(CRSError, match="above 'ellipsoidal'"):
+        heights.check_vertical("EGM96", crs="EPSG:4979")

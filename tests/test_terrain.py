@@ -543,8 +543,13 @@ def test_compiled_project_is_gdal_to_the_last_bit_across_the_dateline(scene):
 
 
 def test_a_zero_denominator_gives_infinity_as_in_c_not_an_exception():
+    # a denominator that is all zeros is no RPC, and is refused; one that is zero at a point
+    # (here the normalised latitude P, zero at LAT_OFF) gives infinity there, as GDAL's C does
     mapping = simple_rpc_dict()
     mapping["SAMP_DEN_COEFF"] = [0.0] * 20
+    with pytest.raises(ValueError, match="samp_den is all zeros"):
+        RPCModel.from_dict(mapping)
+    mapping["SAMP_DEN_COEFF"] = [0.0, 0.0, 1.0] + [0.0] * 17
     col, row = RPCModel.from_dict(mapping).project(-34.88, -8.0, 0.0)
     assert np.isinf(col) and row == RPCModel.from_dict(simple_rpc_dict()).project(
         -34.88, -8.0, 0.0)[1]
@@ -770,3 +775,17 @@ def test_exercise_4b4_asks_about_another_place_than_the_chapter():
     assert GEOID_TASK["geoid_undulation_m"] == pytest.approx(
         float(geoid_undulation(-67.81, -9.97)), abs=0.01)
     assert GEOID_TASK["geoid_undulation_m"] > 0 and GEOID_TASK["view_zenith_deg"] != 30.0
+
+
+def test_a_compound_dem_crs_that_contradicts_dem_vertical_is_refused():
+    # "EPSG:4326+5773" is WGS 84 + EGM96 height: its heights are above the geoid, which
+    # dem_vertical="ellipsoidal" would have silently ignored (N, -5.5 m at Olinda, left out)
+    rpc = RPCModel.from_dict(simple_rpc_dict())
+    image = np.zeros((1000, 1000), dtype=np.float32)
+    args = (image, rpc, np.zeros((10, 10)), affine.Affine(0.01, 0, -34.95, 0, -0.01, -7.95),
+            affine.Affine(0.001, 0, -34.91, 0, -0.001, -7.99), (20, 20), "nearest")
+    with pytest.raises(ValueError, match="dem_vertical is 'ellipsoidal' but dem_crs says the "
+                                         "heights are above 'EGM96'"):
+        orthorectify(*args, dem_crs="EPSG:4326+5773", dem_vertical="ellipsoidal")
+    with pytest.raises(ValueError, match="above 'EGM2008 height'"):
+        orthorectify(*args, dem_crs="EPSG:4326+3855", dem_vertical="EGM96")

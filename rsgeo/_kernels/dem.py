@@ -4,10 +4,12 @@
 import numpy as np
 from numba import njit
 
+from .._numba_cache import CACHE
+
 __all__ = ["dem_height_at", "dem_heights"]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def dem_height_at(dem, inverse, x, y):
     """GDALRPCGetDEMHeight, bilinear with the nearest fallback, at one map point: (height,
     whether the point is outside the DEM). NaN for a point outside or over a hole."""
@@ -34,7 +36,7 @@ def dem_height_at(dem, inverse, x, y):
     return dem[int(py), int(px)], False
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def dem_heights(dem, inverse, x, y, out):
     """dem_height_at at every point of 1-D arrays, into ``out``.
 

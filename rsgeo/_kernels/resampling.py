@@ -7,25 +7,18 @@ neighbours, weight them, round, store; GDAL's ``alg/gdalwarpkernel.cpp`` operati
 :func:`rsgeo.resample.interpolate` and :func:`rsgeo.resample.warp`.
 """
 
+import numpy as np
+from numba import njit
 
-import os
-
-# Numba's OpenMP threading layer, when it is the one chosen, loads GNU OpenMP at
-# the first parallel call; by default its idle threads spin, which on a machine
-# shared with other work makes two threads slower than one. Wait passively
-# instead, unless the user chose otherwise (set before OpenMP loads).
-os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
-
-import numpy as np  # noqa: E402
-from numba import njit, prange  # noqa: E402
-
+from .._numba_cache import CACHE
 from ..errors import RsgeoError
 from ..language import _
-from . import numba_threads
+from ._rows import run_in_row_blocks
 from .transformer import ARRAYS, pixel_centre, row_positions, to_source
 
 __all__ = ["METHODS", "WARP_METHODS", "keys_weights", "cubic_kernel", "bilinear_weights",
-           "GDAL_INDEX_EPSILON", "RADIUS", "resample_pixels", "BLOCK", "COMPUTED_AS",
+           "GDAL_INDEX_EPSILON", "RADIUS", "resample_pixels", "kernel_dtype", "BLOCK",
+           "COMPUTED_AS",
            "NO_POSITIONS", "POSITIONS_GIVEN"]
 
 METHODS = ("nearest", "bilinear", "cubic")
@@ -86,7 +79,7 @@ def keys_weights(t, a=-0.5):
                      cubic_kernel(1 - t, a), cubic_kernel(2 - t, a)])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _cubic_weights(t):
     """GDAL's GWKCubicComputeWeights for one offset t, operation for operation.
 
@@ -105,7 +98,7 @@ def _cubic_weights(t):
     return w0, w1, w2, w3
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _cubic_weights_of_array(t):
     """The four weights of every offset in a 1-D array t, as a (4, t.size) array."""
     weights = np.empty((4, t.size))
@@ -197,6 +190,43 @@ _NO_MASK_TYPES = ("uint8", "int16", "uint16", "float32")
 # Float types Numba cannot compute in are computed in this type, then cast back.
 COMPUTED_AS = {np.dtype(np.float16): np.dtype(np.float32),
                 np.dtype(np.longdouble): np.dtype(np.float64)}
+# Nearest copies values: it runs on the image's bits, an unsigned integer as wide as its type.
+_BITS_OF_SIZE = {1: np.dtype(np.uint8), 2: np.dtype(np.uint16), 4: np.dtype(np.uint32),
+                 8: np.dtype(np.uint64)}
+
+
+def kernel_dtype(dtype, method):
+    """The type a method's loop reads an image of ``dtype`` in: few types, few compilations.
+
+    Numba compiles a loop once per type of its arguments, some 2 CPU-s each on a cold
+    cache. The interpolating loops weigh every pixel in float64 whatever its type (as GDAL
+    does), so reading an image as float64 gives the same pixels: they run on uint8 (the
+    type of most imagery, read as it is to spare memory) or on float64 (every other type;
+    64-bit integers are checked to lie within +-2**53 first). Nearest copies values, so it
+    runs on their bits: an unsigned integer type of the same width.
+
+    Parameters
+    ----------
+    dtype : numpy.dtype
+        The image's type, as computed (after ``COMPUTED_AS``), in native byte order.
+    method : str
+        One of ``WARP_METHODS``.
+
+    Returns
+    -------
+    numpy.dtype
+    """
+    if method == "nearest":
+        return _BITS_OF_SIZE[dtype.itemsize]
+    return dtype if dtype == np.uint8 else np.dtype(np.float64)
+
+
+def _in_kernel_dtype(values, computed, kernel):
+    """``values`` (of type ``computed``) as the loop reads them (``kernel``): cast or bits."""
+    values = np.ascontiguousarray(values, dtype=computed)
+    if kernel.kind == "u" and kernel.itemsize == computed.itemsize and kernel != computed:
+        return values.view(kernel)
+    return values.astype(kernel, copy=False)
 
 
 def resample_pixels(image, method, nodata, num_threads, cols, rows, packed, size, row_length,
@@ -207,36 +237,41 @@ def resample_pixels(image, method, nodata, num_threads, cols, rows, packed, size
     arrays ``cols``, ``rows`` (``packed`` is ``POSITIONS_GIVEN``) or are
     computed row by row by the packed transformer (``rsgeo._kernels.transformer``)
     for an output grid ``row_length`` pixels wide. ``valid``:
-    the source validity mask (``_validity``), or None for none.
+    the source validity mask (``_validity``), or None for none. ``num_threads``
+    threads share the rows (``run_in_row_blocks``).
     """
     bands = image if image.ndim == 3 else image[np.newaxis]
     dtype = bands.dtype
-    work = COMPUTED_AS.get(dtype, dtype.newbyteorder("="))  # Numba needs native byte order
-    bands = np.ascontiguousarray(bands, dtype=work)
-    out = np.empty((bands.shape[0], size), dtype=work)
+    computed = COMPUTED_AS.get(dtype, dtype.newbyteorder("="))  # Numba needs native order
+    kernel_type = kernel_dtype(computed, method)
+    bands = _in_kernel_dtype(bands, computed, kernel_type)
+    out = np.empty((bands.shape[0], size), dtype=kernel_type)
     if size == 0:
-        return out.astype(dtype), 0
+        return np.empty((bands.shape[0], 0), dtype=dtype), 0
     # no nodata (gdalwarp without -dstnodata): outside is 0 and no AvoidNoData nudge,
     # which comparing with NaN (never equal) turns off
     avoid = nodata is not None
     nodata = nodata if avoid else 0
-    fill = np.array([nodata], dtype=work)
-    if work.kind in "ui":
-        info = np.iinfo(work)
+    fill = np.array([nodata], dtype=computed)
+    is_int = computed.kind in "ui"
+    if is_int:
+        info = np.iinfo(computed)
         # the next value away from nodata, GDAL's AvoidNoData
-        step = np.array([nodata + 1 if nodata == info.min else nodata - 1], dtype=work)
+        step = np.array([nodata + 1 if nodata == info.min else nodata - 1], dtype=computed)
         # GDAL's clamp to the dtype's range; a 64-bit maximum has no float64 (2**63 - 1
         # rounds up to 2**63, which overflows the cast), so the clamp stops at the largest
         # float64 below it (64-bit images are checked to stay within +-2**53, so only the
         # bottom of uint64's range, 0, can be reached: _check_exact_in_float64)
         low = float(info.min)
-        high = float(info.max) if work.itemsize < 8 else float(np.nextafter(float(info.max), 0))
+        high = (float(info.max) if computed.itemsize < 8
+                else float(np.nextafter(float(info.max), 0)))
     else:
-        step = np.array([np.nextafter(work.type(nodata), work.type(np.inf))], dtype=work)
+        step = np.array([np.nextafter(computed.type(nodata), computed.type(np.inf))],
+                        dtype=computed)
         low, high = -np.inf, np.inf
+    fill = _in_kernel_dtype(fill, computed, kernel_type)
+    step = _in_kernel_dtype(step, computed, kernel_type)
     n_rows = -(-size // row_length)
-    kernel = {"nearest": _nearest_loop, "bilinear": _bilinear_loop, "cubic": _cubic_loop,
-              "average": None}[method]
     compare = float(nodata) if avoid else np.nan
     if valid is None:
         valid = _NO_MASK
@@ -248,53 +283,61 @@ def resample_pixels(image, method, nodata, num_threads, cols, rows, packed, size
             "not supported; give scale=1 for the plain {method} kernel, use "
             "method='average' (which leaves src_nodata pixels out), or fill the nodata "
             "pixels first").format(method=method, scale=(xscale, yscale)))
-    with numba_threads(num_threads):
-        if method == "average":
-            margins = [2 * max(1, int(np.ceil(1.0 / value))) for value in scale]
-            inside = _average_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                                   packed, n_rows, row_length, out, fill, step, compare,
-                                   work.kind in "ui", low, high, margins[0], margins[1], valid)
-        elif widened:
-            inside = _widened_loop(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                                   packed, n_rows, row_length, out, fill, step, compare,
-                                   work.kind in "ui", low, high, RADIUS[method],
-                                   float(xscale), float(yscale))
-        elif method == "nearest":
-            inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                            packed, n_rows, row_length, out, fill, step, compare,
-                            work.kind in "ui", low, high, valid)
-        else:
-            # GDAL's general path (GWKRealCase) with a destination nodata, and for the types
-            # without a specialised no-mask kernel
-            # the dtype computed in (float16 in float32, as warp converts it)
-            masked = avoid or work.name not in _NO_MASK_TYPES
-            inside = kernel(bands, np.ascontiguousarray(cols), np.ascontiguousarray(rows),
-                            packed, n_rows, row_length, out, fill, step, compare,
-                            work.kind in "ui", low, high, masked, valid)
-    return (out if work == dtype else out.astype(dtype)), inside
+    cols, rows = np.ascontiguousarray(cols), np.ascontiguousarray(rows)
+    head = (bands, cols, rows, packed)
+    tail = (row_length, out, fill, step, compare, is_int, low, high)
+    if method == "average":
+        margins = [2 * max(1, int(np.ceil(1.0 / value))) for value in scale]
+
+        def loop(first, stop):
+            return _average_loop(*head, first, stop, *tail, margins[0], margins[1], valid)
+    elif widened:
+        def loop(first, stop):
+            return _widened_loop(*head, first, stop, *tail, RADIUS[method], float(xscale),
+                                 float(yscale))
+    elif method == "nearest":
+        def loop(first, stop):
+            return _nearest_loop(*head, first, stop, *tail, valid)
+    else:
+        # GDAL's general path (GWKRealCase) with a destination nodata, and for the types
+        # without a specialised no-mask kernel (float16 is computed as float32, as warp
+        # converts it)
+        masked = avoid or computed.name not in _NO_MASK_TYPES
+        kernel = _bilinear_loop if method == "bilinear" else _cubic_loop
+
+        def loop(first, stop):
+            return kernel(*head, first, stop, *tail, masked, valid)
+    inside = run_in_row_blocks(loop, n_rows, num_threads)
+    if out.dtype == dtype:
+        return out, inside
+    if method == "nearest" and computed.itemsize == out.dtype.itemsize:
+        return out.view(computed).astype(dtype, copy=False), inside
+    return out.astype(dtype), inside
 
 
 # -- the kernels: one loop over output pixels per method ----------------------
 #
 # Each is compiled by Numba (cache=True keeps the machine code between
 # sessions; no fastmath, so every floating-point operation happens in the order
-# written here, which is GDAL's). Threads share the output rows (prange).
+# written here, which is GDAL's). Each runs over output rows first_row .. stop_row - 1
+# and returns how many of their pixels it found inside the source; threads share a
+# warp's rows in blocks (rsgeo._kernels._rows).
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _u(index):
     """An index known to be in range, unsigned: Numba then skips its negative-index
     wrap-around test, which made the nearest kernel three times slower."""
     return np.uint64(index)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _pixel(bands, band, row, col):
     """The source value ``bands[band, row, col]``, for indices inside the image."""
     return bands[_u(band), _u(row), _u(col)]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width, height):
     """Where the pixels of output row i fall in the source; returns how many pixels it has.
 
@@ -318,7 +361,7 @@ def _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, 
     return n
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _exact_near_edges(packed, i, n, row_cols, row_rows, width, height):
     """GDAL's second try: an approximated position just outside the source is made exact.
 
@@ -345,7 +388,7 @@ def _exact_near_edges(packed, i, n, row_cols, row_rows, width, height):
                                                  (i + 0.5) + packed[11])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _is_inside(col, row, width, height):
     """GDAL's rule: a position is in the image if it is in [0, W) x [0, H)."""
     return (col >= 0.0 and row >= 0.0
@@ -353,7 +396,7 @@ def _is_inside(col, row, width, height):
             and np.floor(row + GDAL_INDEX_EPSILON) < height)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _store(out, band, k, value, step, nodata, is_int, low, high):
     """Write an interpolated value: GDAL's GWKClampValueT, then AvoidNoData.
 
@@ -377,9 +420,9 @@ def _store(out, band, k, value, step, nodata, is_int, low, high):
         out[_u(band), _u(k)] = value
 
 
-@njit(cache=True, parallel=True, nogil=True)
-def _nearest_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
-                  is_int, low, high, valid):
+@njit(cache=CACHE, nogil=True)
+def _nearest_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out, fill,
+                  step, nodata, is_int, low, high, valid):
     """Nearest neighbour (GDAL's GWKNearest), pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
@@ -393,9 +436,8 @@ def _nearest_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
-    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
-    for i in prange(n_rows):
-        landed_in_row = 0
+    landed = 0
+    for i in range(first_row, stop_row):
         row_cols = np.empty(row_length)
         row_rows = np.empty(row_length)
         n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
@@ -407,7 +449,7 @@ def _nearest_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
                 continue
-            landed_in_row += 1
+            landed += 1
             # positive here, so truncation is floor; GDAL adds the same tiny margin
             c = int(col + GDAL_INDEX_EPSILON)
             r = int(row + GDAL_INDEX_EPSILON)
@@ -416,11 +458,10 @@ def _nearest_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
                     out[_u(band), _u(k)] = fill[0]
                 else:
                     out[_u(band), _u(k)] = _pixel(bands, band, r, c)
-        landed[i] = landed_in_row
-    return landed.sum()
+    return landed
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _bilinear_window(col, row):
     """(left, top, ratio_x, ratio_y) of the 2 x 2 window around (col, row), as GDAL computes it.
 
@@ -432,7 +473,7 @@ def _bilinear_window(col, row):
     return int(left_f), int(top_f), 1.5 - (col - left_f), 1.5 - (row - top_f)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _masked_bilinear_window(col, row):
     """``_bilinear_window`` as GDAL's masked kernels take it: a window hanging off the left
     (top) edge by one column (row) starts at 0 with ratio 1."""
@@ -446,7 +487,7 @@ def _masked_bilinear_window(col, row):
     return left, top, ratio_x, ratio_y
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _bilinear_at(bands, band, col, row):
     """Bilinear value at (col, row): GDAL's GWKBilinearResampleNoMasks4SampleT.
 
@@ -490,7 +531,7 @@ def _bilinear_at(bands, band, col, row):
     return accumulator / (divisor if divisor != 0.0 else 1.0)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _bilinear_masked_at(bands, band, col, row):
     """Bilinear value at (col, row): GDAL's GWKBilinearResample4Sample.
 
@@ -532,7 +573,7 @@ def _bilinear_masked_at(bands, band, col, row):
     return accumulator / (divisor if divisor != 0.0 else 1.0)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _bilinear_valid_at(bands, valid, band, col, row):
     """``_bilinear_masked_at`` over the valid pixels only: (value, found).
 
@@ -572,7 +613,7 @@ def _bilinear_valid_at(bands, valid, band, col, row):
     return accumulator / divisor, True
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _centre_is_invalid(valid, col, row):
     """GDAL's check of the source pixel that contains (col, row) in its unified mask.
 
@@ -591,9 +632,9 @@ def _centre_is_invalid(valid, col, row):
     return True
 
 
-@njit(cache=True, parallel=True, nogil=True)
-def _bilinear_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
-                   is_int, low, high, masked, valid):
+@njit(cache=CACHE, nogil=True)
+def _bilinear_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out, fill,
+                   step, nodata, is_int, low, high, masked, valid):
     """Bilinear interpolation, pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
@@ -607,9 +648,8 @@ def _bilinear_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, ste
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
-    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
-    for i in prange(n_rows):
-        landed_in_row = 0
+    landed = 0
+    for i in range(first_row, stop_row):
         row_cols = np.empty(row_length)
         row_rows = np.empty(row_length)
         n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
@@ -621,7 +661,7 @@ def _bilinear_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, ste
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
                 continue
-            landed_in_row += 1
+            landed += 1
             if _centre_is_invalid(valid, col, row):
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
@@ -637,11 +677,10 @@ def _bilinear_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, ste
                 else:
                     value = _bilinear_at(bands, band, col, row)
                 _store(out, band, k, value, step, nodata, is_int, low, high)
-        landed[i] = landed_in_row
-    return landed.sum()
+    return landed
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _cubic_convolution(d, f0, f1, f2, f3):
     """GDAL's CubicConvolution macro: Keys (a = -0.5) at the offset d from f1.
 
@@ -654,7 +693,7 @@ def _cubic_convolution(d, f0, f1, f2, f3):
                        + d3 * (3.0 * (f1 - f2) + f3 - f0))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _cubic_window_is_valid(valid, band, top, left):
     """Whether all 16 pixels of the 4 x 4 window at (top - 1, left - 1) are valid."""
     for r in range(top - 1, top + 3):
@@ -664,9 +703,9 @@ def _cubic_window_is_valid(valid, band, top, left):
     return True
 
 
-@njit(cache=True, parallel=True, nogil=True)
-def _cubic_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
-                is_int, low, high, masked, valid):
+@njit(cache=CACHE, nogil=True)
+def _cubic_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out, fill,
+                step, nodata, is_int, low, high, masked, valid):
     """Cubic convolution, pixel by pixel.
 
     For each output pixel: find its position (col, row) in the source; if it
@@ -687,9 +726,8 @@ def _cubic_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, 
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
-    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
-    for i in prange(n_rows):
-        landed_in_row = 0
+    landed = 0
+    for i in range(first_row, stop_row):
         row_cols = np.empty(row_length)
         row_rows = np.empty(row_length)
         n = _row_positions(i, row_length, size, cols, rows, packed, row_cols, row_rows, width,
@@ -701,7 +739,7 @@ def _cubic_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, 
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
                 continue
-            landed_in_row += 1
+            landed += 1
             if _centre_is_invalid(valid, col, row):
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
@@ -758,15 +796,14 @@ def _cubic_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, 
                 else:
                     value = _cubic_convolution(dy, along0, along1, along2, along3)
                 _store(out, band, k, value, step, nodata, is_int, low, high)
-        landed[i] = landed_in_row
-    return landed.sum()
+    return landed
 
 
 # GDAL's filter radius of each method (anGWKFilterRadius), in source pixels at scale 1
 RADIUS = {"nearest": 0, "bilinear": 1, "cubic": 2}
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _filter_weight(x, radius):
     """GDAL's GWKBilinear (radius 1) or CubicKernel (radius 2, Keys with a = -0.5) at x."""
     ax = abs(x)
@@ -779,9 +816,9 @@ def _filter_weight(x, radius):
     return 0.0
 
 
-@njit(cache=True, parallel=True, nogil=True)
-def _widened_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
-                  is_int, low, high, radius, xscale, yscale):
+@njit(cache=CACHE, nogil=True)
+def _widened_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out, fill,
+                  step, nodata, is_int, low, high, radius, xscale, yscale):
     """Bilinear or cubic widened by 1/scale when downsampling: GDAL's GWKResample.
 
     For each output pixel: find its position (col, row) in the source; if it
@@ -805,9 +842,8 @@ def _widened_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
     # the window's first tap depends on the parity of the radius (GDAL's nFiltInit)
     x_first = ((radius + 1) % 2) - x_radius
     y_first = ((radius + 1) % 2) - y_radius
-    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
-    for i in prange(n_rows):
-        landed_in_row = 0
+    landed = 0
+    for i in range(first_row, stop_row):
         weights_x = np.empty(2 * x_radius + 2)
         row_cols = np.empty(row_length)
         row_rows = np.empty(row_length)
@@ -820,7 +856,7 @@ def _widened_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
                 for band in range(n_bands):
                     out[_u(band), _u(k)] = fill[0]
                 continue
-            landed_in_row += 1
+            landed += 1
             left = int(np.floor(col - 0.5))
             top = int(np.floor(row - 0.5))
             dx = col - 0.5 - left
@@ -852,11 +888,10 @@ def _widened_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
                 if total_weight < 0.99999 or total_weight > 1.00001:
                     total = total / total_weight
                 _store(out, band, k, total, step, nodata, is_int, low, high)
-        landed[i] = landed_in_row
-    return landed.sum()
+    return landed
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _cell_span(low, high, size):
     """GDAL's source pixels under a cell edge to edge: (first, stop, low, high), or first = -1.
 
@@ -875,7 +910,7 @@ def _cell_span(low, high, size):
     return first, stop, low, high
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _edge_weight(index, first, stop, low, high):
     """GDAL's COMPUTE_WEIGHT along one axis: the part of pixel ``index`` inside the cell."""
     if index == first:
@@ -885,9 +920,9 @@ def _edge_weight(index, first, stop, low, high):
     return 1.0
 
 
-@njit(cache=True, parallel=True, nogil=True)
-def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step, nodata,
-                  is_int, low, high, x_margin, y_margin, valid):
+@njit(cache=CACHE, nogil=True)
+def _average_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out, fill,
+                  step, nodata, is_int, low, high, x_margin, y_margin, valid):
     """Area-weighted average (GDAL's GWKAverageOrMode, "average"), cell by cell.
 
     For each output cell: take its top-left and bottom-right corners to the
@@ -905,9 +940,8 @@ def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
     """
     n_bands, height, width = bands.shape
     size = out.shape[1]
-    landed = np.zeros(n_rows, dtype=np.int64)  # per row: no shared counter
-    for i in prange(n_rows):
-        landed_in_row = 0
+    landed = 0
+    for i in range(first_row, stop_row):
         for j in range(row_length):
             k = i * row_length + j
             if k >= size:
@@ -954,7 +988,6 @@ def _average_loop(bands, cols, rows, packed, n_rows, row_length, out, fill, step
                 else:
                     out[_u(band), _u(k)] = fill[0]
             if found:
-                landed_in_row += 1
-        landed[i] = landed_in_row
-    return landed.sum()
+                landed += 1
+    return landed
 

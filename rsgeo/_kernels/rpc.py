@@ -5,6 +5,8 @@
 
 from numba import njit
 
+from .._numba_cache import CACHE
+
 __all__ = ["PACKED_SCALARS", "RPC_PACKED_SIZE", "rpc_sum", "rpc_point", "project_points"]
 
 
@@ -17,7 +19,7 @@ PACKED_SCALARS = (("LONG", "OFF"), ("LONG", "SCALE"), ("LAT", "OFF"), ("LAT", "S
 RPC_PACKED_SIZE = 10 + 4 * 20
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def rpc_sum(p, o, L, P, H, LP, LH, PH, LL, PP, HH):
     """GDAL's RPCEvaluate of one cubic (coefficients p[o:o + 20]): the even terms and the odd
     terms summed apart, in index order, then added (GDAL's two SSE2 lanes)."""
@@ -48,7 +50,7 @@ def rpc_sum(p, o, L, P, H, LP, LH, PH, LL, PP, HH):
     return even + odd
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def rpc_point(p, o, lon, lat, height):
     """GDAL's RPCTransformPoint: (col, row) of one ground point, the packed RPC at p[o:]."""
     diff = lon - p[o]
@@ -75,7 +77,7 @@ def rpc_point(p, o, lon, lat, height):
     return col, row
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=CACHE, error_model="numpy")
 def project_points(p, lon, lat, height, cols, rows):
     """rpc_point for every point of 1-D arrays, into cols and rows (in vector instructions:
     error_model="numpy" lets a division by zero give infinity, as in GDAL's C)."""

@@ -65,12 +65,14 @@ import sys
 
 import numpy as np
 from llvmlite import ir
-from numba import njit, prange, types
+from numba import njit, types
 from numba.extending import intrinsic
 
+from .._numba_cache import CACHE
 from ..errors import GCPError
 from ..language import N_, _
 from ..validation import as_integer, as_points
+from ._rows import run_in_row_blocks
 
 __all__ = ["FULL", "GDAL_FAST_LOG", "GDAL_INVERSE", "GDAL_STEPS", "ONE_DIMENSIONAL", "evaluate",
            "evaluate_many", "invert_many", "pack_inverse", "solve"]
@@ -152,7 +154,7 @@ def solve(src, dst):
     return packed
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _statistics(x, y):
     """GDAL's sums over the GCPs, in its order: x and y extents and centred (co)variances."""
     n = x.shape[0]
@@ -197,7 +199,7 @@ def _one_dimensional(x, y, values, statistics):
                            values[0], values[1]]).astype(np.float64)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=CACHE, error_model="numpy")
 def _solve_full(x, y, values, packed):
     """GDAL's full spline into ``packed``; False if the system is singular."""
     n = x.shape[0]
@@ -247,13 +249,14 @@ def _solve_full(x, y, values, packed):
     return True
 
 
-@njit(cache=True, parallel=True, error_model="numpy")
+@njit(cache=CACHE, error_model="numpy")
 def _lu_solve(a, rhs, out):
     """GDAL's ``solve()`` in gdallinearsystem.cpp: LU with partial pivoting, then LUP solve.
 
-    Every element goes through the same operations as in GDAL (the columns of
-    one elimination step are independent, so running them in parallel changes
-    no bit). ``a`` is overwritten by its LU factors. False if a pivot is 0.
+    Every element goes through the same operations as in GDAL, in one thread as GDAL runs
+    it: a parallel elimination costs several CPU-seconds more to compile on every cold
+    cache, and the serial one solves 2,000 GCPs in a few seconds. ``a`` is overwritten by
+    its LU factors. False if a pivot is 0.
     """
     m = a.shape[0]
     perm = np.arange(m)
@@ -272,7 +275,7 @@ def _lu_solve(a, rhs, out):
                 a[pivot, col], a[step, col] = a[step, col], a[pivot, col]
         for row in range(step + 1, m):
             a[row, step] /= a[step, step]
-        for col in prange(step + 1, m):
+        for col in range(step + 1, m):
             factor = a[step, col]
             for row in range(step + 1, m):
                 a[row, col] -= a[row, step] * factor
@@ -348,7 +351,7 @@ _LG5 = 1.818357216161805012e-01
 _LG6 = 1.531383769920937332e-01
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=CACHE, inline="always", error_model="numpy")
 def _approximate_log(value):
     """GDAL's FastApproxLog4Val for one value > 0 (its lanes are independent).
 
@@ -375,7 +378,7 @@ def _approximate_log(value):
     return (float(k) - _1023_TIMES_2POW20) * _LN2_OVER_2POW20 - (s * (f - r) - f)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _grouped_term(packed, xs, ys, r, px, py):
     """GDAL's VizGeorefSpline2DBase_func4 for one of its four lanes: d log d."""
     dx = packed[xs + r] - px
@@ -386,7 +389,35 @@ def _grouped_term(packed, xs, ys, r, px, py):
     return dist * math.log(dist) if dist != 0.0 else 0.0
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=CACHE, error_model="numpy")
+def _line(packed, start, n, x, y):
+    """GDAL's ONE_DIMENSIONAL get_point: linear between the two GCPs around the position."""
+    position = start + 6
+    order = position + n
+    us = order + n
+    vs = us + n
+    along = (packed[start + 2] * (x - packed[start + 4])
+             + packed[start + 3] * (y - packed[start + 5]))
+    if along <= packed[position + int(packed[order])]:
+        left = int(packed[order])
+        right = int(packed[order + 1])
+    elif along >= packed[position + int(packed[order + n - 1])]:
+        left = int(packed[order + n - 2])
+        right = int(packed[order + n - 1])
+    else:
+        left = right = 0
+        for r in range(1, n):
+            left = int(packed[order + r - 1])
+            right = int(packed[order + r])
+            if packed[position + left] <= along <= packed[position + right]:
+                break
+    fact = ((along - packed[position + left])
+            / (packed[position + right] - packed[position + left]))
+    return ((1.0 - fact) * packed[us + left] + fact * packed[us + right],
+            (1.0 - fact) * packed[vs + left] + fact * packed[vs + right])
+
+
+@njit(cache=CACHE, error_model="numpy")
 def _spline(packed, start, x, y):
     """GDAL's get_point for the FULL or ONE_DIMENSIONAL spline packed from ``start``."""
     n = int(packed[start + 1])
@@ -420,35 +451,7 @@ def _spline(packed, start, x, y):
     return u, v
 
 
-@njit(cache=True, error_model="numpy")
-def _line(packed, start, n, x, y):
-    """GDAL's ONE_DIMENSIONAL get_point: linear between the two GCPs around the position."""
-    position = start + 6
-    order = position + n
-    us = order + n
-    vs = us + n
-    along = (packed[start + 2] * (x - packed[start + 4])
-             + packed[start + 3] * (y - packed[start + 5]))
-    if along <= packed[position + int(packed[order])]:
-        left = int(packed[order])
-        right = int(packed[order + 1])
-    elif along >= packed[position + int(packed[order + n - 1])]:
-        left = int(packed[order + n - 2])
-        right = int(packed[order + n - 1])
-    else:
-        left = right = 0
-        for r in range(1, n):
-            left = int(packed[order + r - 1])
-            right = int(packed[order + r])
-            if packed[position + left] <= along <= packed[position + right]:
-                break
-    fact = ((along - packed[position + left])
-            / (packed[position + right] - packed[position + left]))
-    return ((1.0 - fact) * packed[us + left] + fact * packed[us + right],
-            (1.0 - fact) * packed[vs + left] + fact * packed[vs + right])
-
-
-@njit(cache=True, error_model="numpy")
+@njit(cache=CACHE, error_model="numpy")
 def _gdal_inverse(packed, x, y):
     """GDALTPSTransform DstToSrc: (col, row, converged) for the dst point (x, y).
 
@@ -491,7 +494,7 @@ def _gdal_inverse(packed, x, y):
     return x_out, y_out, False
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def evaluate(packed, x, y):
     """The packed spline (or GDAL's inversion of one) at one point, as GDAL computes it.
 
@@ -515,9 +518,10 @@ def evaluate(packed, x, y):
     return _spline(packed, 0, x, y)
 
 
-@njit(cache=True, parallel=True)
 def evaluate_many(packed, points, out):
     """:func:`evaluate` at every row of ``points`` (n, 2), into ``out`` (n, 2).
+
+    Numba's threads share the points in blocks (``rsgeo._kernels._rows``).
 
     Parameters
     ----------
@@ -525,13 +529,14 @@ def evaluate_many(packed, points, out):
     points : (n, 2) float64 ndarray
     out : (n, 2) float64 ndarray
     """
-    for k in prange(points.shape[0]):
-        out[k, 0], out[k, 1] = evaluate(packed, points[k, 0], points[k, 1])
+    run_in_row_blocks(lambda first, stop: _evaluate_points(packed, points, out, first, stop),
+                      points.shape[0], _threads(points.shape[0]))
 
 
-@njit(cache=True, parallel=True)
 def invert_many(packed, points, out, converged):
     """GDAL's inversion (a :data:`GDAL_INVERSE` array) at every point, with its success flag.
+
+    Numba's threads share the points in blocks (``rsgeo._kernels._rows``).
 
     Parameters
     ----------
@@ -543,5 +548,31 @@ def invert_many(packed, points, out, converged):
     converged : (n,) bool ndarray
         Whether GDALGenericInverse2D reached its tolerance within its steps.
     """
-    for k in prange(points.shape[0]):
+    run_in_row_blocks(
+        lambda first, stop: _invert_points(packed, points, out, converged, first, stop),
+        points.shape[0], _threads(points.shape[0]))
+
+
+# points per thread below which one thread evaluates them all (a thread's start costs more)
+_POINTS_PER_THREAD = 4096
+
+
+def _threads(n_points):
+    """As many threads as Numba would use for ``n_points`` points, one for a few."""
+    import numba
+
+    return max(1, min(numba.get_num_threads(), n_points // _POINTS_PER_THREAD))
+
+
+@njit(cache=CACHE, nogil=True)
+def _evaluate_points(packed, points, out, first, stop):
+    for k in range(first, stop):
+        out[k, 0], out[k, 1] = evaluate(packed, points[k, 0], points[k, 1])
+    return 0
+
+
+@njit(cache=CACHE, nogil=True)
+def _invert_points(packed, points, out, converged, first, stop):
+    for k in range(first, stop):
         out[k, 0], out[k, 1], converged[k] = _gdal_inverse(packed, points[k, 0], points[k, 1])
+    return 0

@@ -54,6 +54,7 @@ import affine
 import numpy as np
 from numba import njit
 
+from .._numba_cache import CACHE
 from . import thin_plate
 
 __all__ = ["ARRAYS", "AFFINE", "POLYNOMIAL", "PROJECTIVE", "TPS", "pack", "row_positions",
@@ -135,7 +136,7 @@ def positions(packed, shape):
     return cols, rows
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _fill_positions(packed, n_rows, n_cols, cols, rows):
     for i in range(n_rows):
         row_positions(packed, i, n_cols, cols[i], rows[i])
@@ -166,7 +167,7 @@ def polynomial_parameters(order, origin, scale, coefficients):
     return np.concatenate([head, coefficients[0], coefficients[1]])
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def _polynomial_uv(order, x0, y0, scale, a, b, x, y):
     """The polynomial with coefficients ``a`` (col) and ``b`` (row) at (x, y)."""
     tx = (x - x0) / scale
@@ -185,7 +186,7 @@ def _polynomial_uv(order, x0, y0, scale, a, b, x, y):
     return u, v
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def polynomial_point(parameters, x, y):
     """A polynomial at one point (x, y): the terms in rsgeo's order, summed left to right.
 
@@ -206,7 +207,7 @@ def polynomial_point(parameters, x, y):
                           parameters[5:5 + m], parameters[5 + m:5 + 2 * m], x, y)
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def polynomial_many(parameters, points):
     """A polynomial at (n, 2) points (what the model's ``__call__`` returns).
 
@@ -226,7 +227,7 @@ def polynomial_many(parameters, points):
     return out
 
 
-@njit(cache=True, inline="always")
+@njit(cache=CACHE, inline="always")
 def projective_point(matrix, x, y):
     """A 3 x 3 homogeneous matrix at (x, y).
 
@@ -248,7 +249,7 @@ def projective_point(matrix, x, y):
             (matrix[3] * x + matrix[4] * y + matrix[5]) / w)
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def to_source(packed, px, py):
     """Output pixel (px, py) -> source (col, row), exactly: GDAL's GenImgProjTransform.
 
@@ -287,7 +288,7 @@ def to_source(packed, px, py):
 # -- one row of the output grid -------------------------------------------------
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def row_positions(packed, i, n, cols, rows):
     """Source positions of the first ``n`` pixels of output row ``i`` into ``cols``, ``rows``.
 
@@ -313,7 +314,7 @@ def row_positions(packed, i, n, cols, rows):
         _exact(packed, py, cols, rows, 0, n)
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def pixel_centre(packed, j):
     """The x of pixel j's centre in the output grid: (j + 0.5) + the window's column offset.
 
@@ -331,7 +332,7 @@ def pixel_centre(packed, j):
     return (j + 0.5) + packed[10]
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _exact(packed, py, cols, rows, first, stop):
     """Exact positions of pixels first .. stop - 1 of the row.
 
@@ -367,12 +368,12 @@ def _exact(packed, py, cols, rows, first, stop):
             cols[j], rows[j] = to_source(packed, pixel_centre(packed, j), py)
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _finite(a, b):
     return np.isfinite(a) and np.isfinite(b)
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _approximate_row(packed, py, n, cols, rows):
     """GDALApproxTransform on one row of n > 5 pixels at height ``py``.
 

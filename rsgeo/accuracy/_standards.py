@@ -399,7 +399,8 @@ def asprs_horizontal(errors):
     ------
     GCPError
         If ``errors`` is not (n, 2) finite numbers (distances alone cannot give
-        RMSE_x and RMSE_y).
+        RMSE_x and RMSE_y); a flat pair such as ``[3, 4]`` is refused too, being
+        either one check point or two distances (give ``[[3, 4]]`` for one point).
 
     References
     ----------
@@ -419,6 +420,12 @@ def asprs_horizontal(errors):
     if np.ndim(errors) == 1 and np.size(errors) != 2:
         raise GCPError(_("errors must be (n, 2) discrepancies (dx, dy): RMSE_x and RMSE_y need "
                          "both components, got {size} distances").format(size=np.size(errors)))
+    if np.ndim(errors) == 1:
+        # [3, 4] is one check point's (dx, dy) or two checks' distances: refused, not guessed
+        raise GCPError(_("errors must be an (n, 2) array of (dx, dy), one row per check point; "
+                         "a flat pair {errors!r} could be one point or two distances: give "
+                         "[[dx, dy]] for one check point").format(errors=np.asarray(errors)
+                                                                    .tolist()))
     vectors = as_points(errors, "errors")
     rmse_x, rmse_y = np.sqrt(np.mean(vectors**2, axis=0))
     rmse_r = float(np.hypot(rmse_x, rmse_y))

@@ -26,10 +26,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import DataError
+from .._atomic import replacing
+from ..errors import DataError, ImageError
 from ..gcp import read_points
 from ..language import _
-from ..validation import as_affine, as_bands_first, as_crs, as_image
+from ..validation import as_affine, as_bands_first, as_crs, as_image, as_nodata
 
 __all__ = ["Raster", "available", "path", "load", "available_gcps", "load_gcps", "save",
            "available_terrain"]
@@ -358,6 +359,8 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
     crs : str, int or rasterio CRS, optional
         E.g. ``"EPSG:29191"`` (see :func:`rsgeo.crs.as_crs`).
     nodata : number, optional
+        A value the array's dtype holds (0 to 255 for uint8; a finite
+        float16 for float16, although it is written as float32).
 
     Returns
     -------
@@ -366,13 +369,30 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
 
     Raises
     ------
-    ValueError
+    TypeError
+        If ``file`` is not a path, or ``nodata`` is not a number (a bool, a
+        string).
+    rsgeo.errors.ImageError
         If the array is not 2-D or 3-D bands first (a (rows, cols, 3) RGB
-        array is refused with the fix); ``transform`` is neither an Affine
-        nor 6 numbers in GDAL's order, or its pixels have no area; ``crs`` is
-        not a CRS PROJ knows; a Raster comes with ``transform``, ``crs`` or
-        ``nodata``; the folder does not exist; or ``file`` is inside rsgeo's
-        data folder.
+        array is refused with the fix), has no band or more than 65,535, or
+        ``nodata`` does not fit its dtype.
+    ValueError
+        If ``transform`` is neither an Affine nor 6 numbers in GDAL's order,
+        or its pixels have no area; ``crs`` is not a CRS PROJ knows; a Raster
+        comes with ``transform``, ``crs`` or ``nodata``.
+    rsgeo.errors.DataError
+        If the folder does not exist or no file can be created in it, ``file``
+        is a folder or a read-only file, or ``file`` is inside rsgeo's data
+        folder.
+
+    Notes
+    -----
+    Nothing is lost: every argument is checked first, and the GeoTIFF is
+    written whole to a hidden temporary file beside ``file`` and then
+    renamed onto it in one atomic step (``os.replace``). A refused call, a
+    failure or an interrupted process leaves an existing ``file`` as it
+    was; two processes saving to one name leave one of their files,
+    complete.
 
     Examples
     --------
@@ -399,7 +419,9 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
                                          raster_or_array.crs, raster_or_array.nodata)
     else:
         array = np.asarray(raster_or_array)
-    array = as_bands_first(as_image(array, "array"), "array")
+    # every argument is checked before a file is created: a refusal leaves the disk as it was
+    array = _as_bands(as_bands_first(as_image(array, "array"), "array"))
+    nodata = as_nodata(nodata, array.dtype)
     if array.dtype == np.float16:
         array = array.astype(np.float32)                  # exact: every float16 is a float32
     if not array.dtype.isnative:
@@ -409,11 +431,29 @@ def save(file, raster_or_array, transform=None, crs=None, nodata=None):
     crs = None if crs is None else as_crs(crs, "crs")
     target = _writable(file)
     bands = array if array.ndim == 3 else array[np.newaxis]
-    with rasterio.open(target, "w", driver="GTiff", width=bands.shape[2], height=bands.shape[1],
-                       count=bands.shape[0], dtype=bands.dtype, transform=transform, crs=crs,
-                       nodata=nodata, compress="deflate") as dataset:
+    # written whole beside the target, then renamed onto it: a failed or killed writer leaves
+    # the old file (or none), never a partial GeoTIFF that opens as zeros
+    with replacing(target) as temporary, rasterio.open(
+            temporary, "w", driver="GTiff", width=bands.shape[2], height=bands.shape[1],
+            count=bands.shape[0], dtype=bands.dtype, transform=transform, crs=crs,
+            nodata=nodata, compress="deflate") as dataset:
         dataset.write(bands)
     return Path(file)
+
+
+# a GeoTIFF's band count is a 16-bit number (GDAL refuses more)
+_MAX_BANDS = 65535
+
+
+def _as_bands(array):
+    """``array`` if it has from 1 to 65,535 bands, as a GeoTIFF holds; else an ImageError."""
+    bands = array.shape[0] if array.ndim == 3 else 1
+    if not 1 <= bands <= _MAX_BANDS:
+        raise ImageError(_(
+            "array has {bands} bands (shape {shape}); a GeoTIFF holds from 1 to {most} bands: "
+            "give (rows, cols) for one band or (bands, rows, cols)").format(
+                bands=bands, shape=array.shape, most=_MAX_BANDS))
+    return array
 
 
 def _writable(file):

@@ -6,7 +6,7 @@ reference band, by phase correlation of their gradients.
 import numpy as np
 
 from ..errors import GCPError, ImageError
-from ..language import _
+from ..language import N_, _
 from ..validation import as_image, as_integer, as_number, check_choice
 from ._tiepoints import MAX_EDGE_SHARE, MIN_WINDOW, measure_shifts, one_blas_thread
 
@@ -20,6 +20,12 @@ __all__ = [
 
 #: What :func:`band_misregistration` correlates: each band's gradient magnitude, or the band.
 BAND_FEATURES = ("gradient", "intensity")
+
+
+#: Largest ``upsample`` band_misregistration takes: 1/1000 px is ten times finer than a window's
+#: shift is known, and the upsampled correlation of a window holds (1.5 upsample)² complex
+#: numbers (36 MB at 1000; at 10**6, 36 TB).
+MAX_UPSAMPLE = 1000
 
 
 def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="gradient",
@@ -77,7 +83,8 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
         no two windows share a pixel and their errors are independent, which
         the standard error assumes (overlapping windows make it too small).
     upsample : int
-        Sub-pixel step of each window's shift: 1 / upsample pixel.
+        Sub-pixel step of each window's shift: 1 / upsample pixel; 1 to
+        ``MAX_UPSAMPLE`` (1000).
     feature : {"gradient", "intensity"}
         What is correlated (see above).
     names : sequence of str, optional
@@ -172,7 +179,10 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
                           "bands").format(n=MIN_WINDOW))
     spacing = window if spacing is None else as_integer(spacing, "spacing", 1, None,
                                                         _("a whole number of pixels"))
-    upsample = as_integer(upsample, "upsample", 1, None, _("1 / the sub-pixel precision"))
+    upsample = as_integer(upsample, "upsample", 1, MAX_UPSAMPLE,
+                          N_("1 / the sub-pixel precision; the upsampled correlation takes "
+                             "(1.5 upsample)² complex numbers per window, and a window's shift "
+                             "is not known to better than a hundredth of a pixel"))
     iterations = as_integer(iterations, "iterations", 1, None, _("a number of passes"))
     min_reliability = as_number(min_reliability, "min_reliability", 0, None,
                                 _("a peak height in standard deviations; 0 keeps every window"))

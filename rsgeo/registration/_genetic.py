@@ -50,9 +50,10 @@ import numpy as np
 from numba import njit
 
 from .. import gcp
-from ..errors import GCPError, RsgeoError
+from .._numba_cache import CACHE
+from ..errors import GCPError, GridError, RsgeoError
 from ..language import N_, _
-from ..validation import as_integer, as_number, as_points, check_choice
+from ..validation import as_finite, as_integer, as_number, as_points, check_choice
 from ._pipeline import register
 
 __all__ = [
@@ -97,7 +98,10 @@ class Mesh:  # numpydoc ignore=PR02
     Raises
     ------
     ValueError
-        Fewer than 3 segments, arrays of different lengths, non-positive areas.
+        Fewer than 3 segments, arrays of different lengths, non-positive areas;
+        ``GridError`` for a pixel size that is not positive.
+    TypeError
+        If ``pixel_size`` or an area is a bool or text.
     """
 
     centroids: np.ndarray
@@ -106,8 +110,13 @@ class Mesh:  # numpydoc ignore=PR02
     distances: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
-        self.centroids = as_points(self.centroids, "centroids") * float(self.pixel_size)
-        self.areas = np.asarray(self.areas, dtype=np.float64).ravel() * float(self.pixel_size) ** 2
+        self.pixel_size = as_number(self.pixel_size, "pixel_size")
+        if not self.pixel_size > 0:
+            raise GridError(_("pixel_size must be a positive size of a pixel in map units (1 "
+                              "when centroids and areas are already in map units), got "
+                              "{value!r}").format(value=self.pixel_size))
+        self.centroids = as_points(self.centroids, "centroids") * self.pixel_size
+        self.areas = as_finite(self.areas, "areas").ravel() * self.pixel_size ** 2
         if len(self.centroids) < 3:
             raise RsgeoError(_("a relational mesh needs at least 3 segments, got "
                                "{n_values}").format(n_values=len(self.centroids)))
@@ -194,7 +203,7 @@ def fitness_batch(solutions, reference, adjustment, alpha=0.5, variant="paper"):
 _TWO_PI = 2 * np.pi
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _score_groups(group_area, group_x, group_y, group_moment, members, reference_areas,
                   reference_distances, alpha, compact, spread_limit):
     """FA from per-label group sums (area, area·x, area·y, polar moment, member count).
@@ -233,7 +242,7 @@ def _score_groups(group_area, group_x, group_y, group_moment, members, reference
     return alpha * size_fitness + (1 - alpha) * layout_fitness
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _fitness_kernel(solutions, reference_areas, reference_distances, adjustment_areas,
                     adjustment_xy, alpha, compact, spread_limit):
     count, n = solutions.shape
@@ -863,7 +872,7 @@ def optimum_match(reference, adjustment, alpha=0.5, variant="paper", incumbent=N
                        int(visited), bool(finished))
 
 
-@njit(cache=True)
+@njit(cache=CACHE)
 def _branch_and_bound(reference_areas, reference_distances, adjustment_areas, adjustment_xy, order,
                       candidates, alpha, compact, spread_limit, best, best_solution, node_limit):
     m, n = len(reference_areas), len(adjustment_areas)

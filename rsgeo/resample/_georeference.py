@@ -223,6 +223,10 @@ def _check_extrapolation(model, reverse, image_shape):
         ExtrapolationWarning, stacklevel=3)
 
 
+#: georeference's default ``order``, the polynomial's; other kinds read it as not given.
+_DEFAULT_ORDER = 1
+
+
 def _fit(gcps, kind, order):
     """Map -> image model of the enabled GCPs."""
     if kind == "polynomial":
@@ -231,11 +235,15 @@ def _fit(gcps, kind, order):
     if fit_transform is None:
         raise GCPError(_("kind {kind!r} is not available; use kind='polynomial' with an "
                          "order").format(kind=kind))
+    if order == _DEFAULT_ORDER and not isinstance(order, bool):
+        # georeference's default order is the polynomial's: a kind without an order (or a
+        # polynomial's order given as the kind) has not been given one
+        order = None
     image_xy, map_xy = gcps.image_xy[gcps.enabled], gcps.map_xy[gcps.enabled]
     if kind == "tps":
         # GDAL's TPS transformer: the image -> map spline, inverted point by point (its
         # GDALGenericInverse2D steps), not a second spline fitted the other way
-        return fit_transform(image_xy, map_xy, kind).inverse()
+        return fit_transform(image_xy, map_xy, kind, order).inverse()
     return fit_transform(map_xy, image_xy, kind, order)
 
 
@@ -258,7 +266,8 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     kind : str
         ``"polynomial"``, or another kind that ``rsgeo.transforms.fit_transform`` knows.
     order : {1, 2, 3} or None
-        Polynomial degree (None for kinds without one, e.g. "helmert").
+        Polynomial degree. Kinds without one (e.g. "helmert") take the default
+        (1) as not given; 2 or 3 with such a kind is refused.
     resolution : float, optional
         Output pixel size in map units (``gdalwarp -tr``).
     method : {"nearest", "bilinear", "cubic"}
@@ -306,6 +315,8 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
                 kind=type(gcps).__name__))
     raster = _as_raster(raster_or_path)
     model = _fit(gcps, kind, order)
+    label = getattr(model, "kind", None) or kind           # "polynomial" also for kind=2
+    order = getattr(model, "order", None) if label == "polynomial" else None
     reverse = (model.reverse() if hasattr(model, "reverse") else model.inverse())
     _check_extrapolation(model, reverse, raster.array.shape[-2:])
     pixel_to_map = reverse
@@ -325,6 +336,6 @@ def georeference(raster_or_path, gcps, kind="polynomial", order=1, resolution=No
     as_output_shape(shape, raster.array.dtype, _bands(raster.array), "shape")
     array = warp(raster.array, mapping, shape, transform, method=method, dst_nodata=nodata)
     return Raster(array, transform, src_crs, nodata,
-                  f"{raster.name or 'image'} georeferenced: {kind}"
+                  f"{raster.name or 'image'} georeferenced: {label}"
                   f"{f' order {order}' if order is not None else ''}, {method}",
                   raster.name)

@@ -68,7 +68,7 @@ import numpy as np
 from ..errors import GCPError, ModelError
 from ..language import _
 from ..transforms import MatrixModel, fit_transform
-from ..validation import as_integer, as_number, as_points
+from ..validation import as_finite, as_integer, as_number, as_points, few_values
 
 __all__ = ["PARAMETERS", "UNITS", "InteriorOrientation", "ExteriorOrientation", "FrameCamera",
            "Resection", "rotation_matrix", "angles_from_rotation", "resect"]
@@ -192,6 +192,10 @@ class InteriorOrientation:
     rsgeo.errors.RsgeoError
         If the focal length or the pitch is not positive, or the size is not two positive
         integers.
+    rsgeo.errors.ModelError
+        If k1 < 0 folds the distortion within the image: the distorted radius
+        ρ (1 + k1 ρ²) stops growing before the farthest corner (k1 must be at least
+        -4 / (27 R²), R the corner's distance from the principal point in mm).
 
     Examples
     --------
@@ -226,6 +230,41 @@ class InteriorOrientation:
                                                   ("principal_point_mm[0]",
                                                    "principal_point_mm[1]"))))
         set_(self, "k1", as_number(self.k1, "k1"))
+        if self.k1 < 0 and self.fold_radius_mm * 2.0 / 3.0 <= self._corner_radius_mm():
+            # ρ (1 + k1 ρ²) rises to (2/3) ρ* at ρ* = 1 / sqrt(-3 k1), then falls back to 0:
+            # measured points beyond (2/3) ρ* have no undistorted position, and ground points
+            # beyond ρ* land back inside the image, over others (10 mm off axis with
+            # k1 = -0.01 per mm² lands on the principal point)
+            raise ModelError(_(
+                "the radial distortion k1 = {k1} per mm² folds within the image: the distorted "
+                "radius rho (1 + k1 rho²) is largest, {largest:.4g} mm, at rho = {fold:.4g} mm "
+                "and falls beyond it, but the image's corners are {corner:.4g} mm from the "
+                "principal point; a calibrated lens is monotonic over its image, so k1 must be "
+                ">= {least:.4g} here (check its unit: per mm², not per pixel² or per m²)").format(
+                    k1=self.k1, largest=self.fold_radius_mm * 2.0 / 3.0,
+                    fold=self.fold_radius_mm, corner=self._corner_radius_mm(),
+                    least=-4.0 / (27.0 * self._corner_radius_mm() ** 2)))
+
+    @property
+    def fold_radius_mm(self):
+        """The ideal radius where the radial distortion turns back, mm (inf where it does not).
+
+        With k1 < 0 the distorted radius ρ (1 + k1 ρ²) is largest at ρ = 1 / sqrt(-3 k1) and
+        falls beyond it; the lens model holds only inside that radius.
+
+        Returns
+        -------
+        float
+        """
+        return 1.0 / np.sqrt(-3.0 * self.k1) if self.k1 < 0 else np.inf
+
+    def _corner_radius_mm(self):
+        """The distance from the principal point to the farthest image corner, mm."""
+        cols, rows = self.size
+        xp, yp = self.principal_point_mm
+        half_x, half_y = cols / 2 * self.pixel_mm, rows / 2 * self.pixel_mm
+        return float(max(np.hypot(sx * half_x - xp, sy * half_y - yp)
+                         for sx in (-1, 1) for sy in (-1, 1)))
 
     @property
     def focal_px(self):
@@ -456,6 +495,15 @@ def _collinearity(params, ground, interior, jacobian=False):
     return image, w, np.stack([d_col, d_row], axis=1)
 
 
+def _ideal_radius(exterior, ground, interior):
+    """The undistorted distance (mm) of each ground point's image from the principal point."""
+    params = _radians(exterior.as_array())
+    r_omega, r_phi, r_kappa = _elementary(*params[3:])
+    u = (ground - params[:3]) @ (r_omega @ r_phi @ r_kappa)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return interior.focal_mm * np.hypot(u[:, 0], u[:, 1]) / np.abs(u[:, 2])
+
+
 def _radians(values):
     """Parameters with the angles (last three) from degrees to radians."""
     values = np.array(values, dtype=np.float64)
@@ -534,6 +582,18 @@ class FrameCamera:
             raise ModelError(_("ground points {rows} lie behind the camera (or level with its "
                                "projection centre) and have no image").format(
                                    rows=np.flatnonzero(behind)[:5].tolist()))
+        if self.interior.k1 < 0:
+            ideal = _ideal_radius(self.exterior, ground, self.interior)
+            folded = ideal >= self.interior.fold_radius_mm
+            if folded.any():
+                raise ModelError(_(
+                    "ground points {rows} are {ideal} mm off axis in the photo, beyond the "
+                    "{fold:.4g} mm where the radial distortion k1 = {k1} turns back: their "
+                    "image would land inside the frame, over other points; they are outside "
+                    "the lens's field").format(
+                        rows=np.flatnonzero(folded)[:5].tolist(),
+                        ideal=few_values(ideal[folded]), fold=self.interior.fold_radius_mm,
+                        k1=self.interior.k1))
         return image
 
     def jacobian(self, ground):
@@ -578,6 +638,8 @@ class FrameCamera:
 
         Raises
         ------
+        TypeError
+            If ``height`` is a bool or text.
         GCPError
             If the points are not (n, 2) finite numbers or the heights are not finite or do not
             match them.
@@ -586,9 +648,11 @@ class FrameCamera:
             horizon, or the plane is above the camera).
         """
         photo = self.interior._undistort(self.interior.to_photo(image_xy))
-        heights = np.broadcast_to(np.asarray(height, dtype=np.float64), (len(photo),))
-        if heights.ndim != 1 or not np.isfinite(heights).all():
-            raise GCPError(_("height must be one finite number or one per point"))
+        heights = as_finite(height, "height", error=GCPError)
+        if heights.ndim > 1 or heights.size not in (1, len(photo)):
+            raise GCPError(_("height must be one finite number or one per point ({n}), got "
+                             "shape {shape}").format(n=len(photo), shape=heights.shape))
+        heights = np.broadcast_to(heights.ravel(), (len(photo),))
         rays = np.column_stack([photo, np.full(len(photo), -self.interior.focal_mm)])
         rays = rays @ self.exterior.rotation().T          # R (x - xp, y - yp, -c)
         with np.errstate(divide="ignore", invalid="ignore"):

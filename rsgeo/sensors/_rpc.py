@@ -37,10 +37,13 @@ from .._kernels.rpc import PACKED_SCALARS, project_points
 from ..errors import DataError, GCPError, ModelError, RsgeoError
 from ..language import _, prose_number
 from ..validation import (
+    as_broadcast,
     as_finite,
     as_integer,
     as_lon_lat_height,
+    as_number,
     check_choice,
+    few_values,
 )
 
 __all__ = [
@@ -101,10 +104,26 @@ class RPCModel:
     """
 
     def __init__(self, offsets, scales, line_num, line_den, samp_num, samp_den, extra=None):
-        self.offsets = {k: float(v) for k, v in offsets.items()}
-        self.scales = {k: float(v) for k, v in scales.items()}
-        self.line_num, self.line_den, self.samp_num, self.samp_den = (
-            np.array(c, dtype=np.float64) for c in (line_num, line_den, samp_num, samp_den))
+        self.offsets = _rpc_numbers(offsets, "offsets")
+        self.scales = _rpc_numbers(scales, "scales")
+        zero = [kind for kind, value in self.scales.items() if value == 0]
+        if zero:
+            raise ModelError(_("scales {zero} are 0; an RPC divides by its scales, so every "
+                               "scale must be a nonzero number").format(zero=", ".join(zero)))
+        coefficients = []
+        for name, values in zip(("line_num", "line_den", "samp_num", "samp_den"),
+                                (line_num, line_den, samp_num, samp_den)):
+            array = as_finite(values, name, error=ModelError)
+            if array.shape != (20,):
+                raise ModelError(_("{name} must be the 20 coefficients of an RPC00B cubic, in "
+                                   "GDAL's term order (RPC_TERMS), got shape {shape}").format(
+                                       name=name, shape=array.shape))
+            coefficients.append(array.copy())
+        for name, array in (("line_den", coefficients[1]), ("samp_den", coefficients[3])):
+            if not array.any():
+                raise ModelError(_("{name} is all zeros; a denominator needs a nonzero "
+                                   "coefficient (usually its first, 1)").format(name=name))
+        self.line_num, self.line_den, self.samp_num, self.samp_den = coefficients
         self.extra = dict(extra or {})
 
     @classmethod
@@ -347,13 +366,13 @@ class RPCModel:
         >>> round(float(lon), 9), round(float(lat), 9)
         (-34.9, -8.0)
         """
-        col = as_finite(col, "col")
-        row = as_finite(row, "row")
-        height = as_finite(height, "height")
-        col, row, height = np.broadcast_arrays(col, row, height)
-        if not tolerance > 0:
+        col, row, height = as_broadcast(
+            [as_finite(col, "col"), as_finite(row, "row"), as_finite(height, "height")],
+            ["col", "row", "height"])
+        if as_number(tolerance, "tolerance") <= 0:
             raise RsgeoError(_("tolerance must be > 0 pixels, got {tolerance!r}").format(
                     tolerance=tolerance))
+        max_iterations = as_integer(max_iterations, "max_iterations", low=0)
         lon = np.full(col.shape, self.offsets["LONG"])
         lat = np.full(col.shape, self.offsets["LAT"])
         step_lon = 1e-7 * self.scales["LONG"]
@@ -379,6 +398,50 @@ class RPCModel:
                                "image the RPC describes?").format(
                     tolerance=prose_number(tolerance), sum=bad.sum(), where=where))
         return lon, lat
+
+
+_RPC_KINDS = ("LINE", "SAMP", "LAT", "LONG", "HEIGHT")
+
+
+def _rpc_numbers(values, name):
+    """An RPC's offsets or scales: one finite number for each of its five coordinates."""
+    if not hasattr(values, "items"):
+        raise TypeError(_("{name} must be a dict with keys {keys}, got {kind}").format(
+            name=name, keys=", ".join(_RPC_KINDS), kind=type(values).__name__))
+    values = {str(key).upper(): value for key, value in values.items()}
+    missing = [kind for kind in _RPC_KINDS if kind not in values]
+    if missing:
+        raise ModelError(_("{name} lacks {missing}; an RPC needs {keys}").format(
+            name=name, missing=", ".join(missing), keys=", ".join(_RPC_KINDS)))
+    return {kind: as_number(values[kind], f"{name}[{kind!r}]") for kind in _RPC_KINDS}
+
+
+#: Largest |normalised longitude or latitude| of a GCP that refine_rpc takes: an RPC is fitted
+#: over its normalised cube [-1, 1] (the scene, with a margin), and its cubic ratios are
+#: meaningless far outside it; a GCP beyond 1.5 is not in the scene (or its lon and lat are
+#: swapped, or it is in projected metres).
+RPC_CUBE_LIMIT = 1.5
+
+
+def _check_in_cube(rpc, lon, lat, height):
+    """Refuse GCPs far outside the RPC's normalised cube, naming a lon/lat swap when it fits."""
+    L, P, _H = rpc.normalise(lon, lat, height)
+    outside = (np.abs(L) > RPC_CUBE_LIMIT) | (np.abs(P) > RPC_CUBE_LIMIT)
+    if not outside.any():
+        return
+    swapped_L, swapped_P = (np.abs(lat - rpc.offsets["LONG"]) / abs(rpc.scales["LONG"]),
+                            np.abs(lon - rpc.offsets["LAT"]) / abs(rpc.scales["LAT"]))
+    swap = bool(((swapped_L <= RPC_CUBE_LIMIT) & (swapped_P <= RPC_CUBE_LIMIT))[outside].all())
+    rows = np.flatnonzero(outside)
+    raise GCPError(_(
+        "GCPs {rows} lie far outside the scene the RPC describes: normalised longitude "
+        "{L} and latitude {P}, where the RPC holds within [-1, 1] and rsgeo takes up to "
+        "+/-{limit:g} (the RPC's centre is lon {lon0:.6g}, lat {lat0:.6g}){hint}").format(
+            rows=rows[:5].tolist(), L=few_values(L[rows]), P=few_values(P[rows]),
+            limit=RPC_CUBE_LIMIT, lon0=rpc.offsets["LONG"], lat0=rpc.offsets["LAT"],
+            hint=_("; longitude and latitude look swapped: give lon first, then lat")
+            if swap else _("; check that lon and lat are degrees (WGS 84) of points in the "
+                           "image")))
 
 
 def simple_rpc_dict():
@@ -541,6 +604,9 @@ def _rpc_gcps(gcps):
         columns = list(array.T)
     arrays = []
     for key, values in zip(_GCP_COLUMNS, columns):
+        if getattr(np.asarray(values), "dtype", np.dtype("O")).kind in "bcUS":
+            raise TypeError(_("gcps[{key!r}] must be numbers, got {values!r}").format(
+                key=key, values=values))
         try:
             values = np.asarray(values, dtype=np.float64).ravel()
         except (TypeError, ValueError):
@@ -663,8 +729,8 @@ class RefinedRPC:
         ValueError
             As :meth:`RPCModel.localize`.
         """
-        col = as_finite(col, "col")
-        row = as_finite(row, "row")
+        col, row = as_broadcast([as_finite(col, "col"), as_finite(row, "row")],
+                                ["col", "row"])
         p = self.parameters
         a, b, c, d = 1 + p["a1"], p["a2"], p["b1"], 1 + p["b2"]
         det = a * d - b * c
@@ -785,6 +851,7 @@ def refine_rpc(rpc, gcps, kind="shift"):
     if not isinstance(rpc, RPCModel):
         rpc = RPCModel.from_dict(rpc)
     lon, lat, height, col, row = _rpc_gcps(gcps)
+    _check_in_cube(rpc, lon, lat, height)
     needed = _BIAS_MINIMUM[kind]
     if lon.size < needed:
         raise GCPError(_("a {kind} compensation needs at least {needed} GCP(s), got {got}")

@@ -297,9 +297,12 @@ def fit_transform(src, dst, kind, order=None):
         Unknown kind; an order for a kind that has none (or none for a
         polynomial); fewer GCPs than ``min_gcps(kind, order)``; collinear
         points for projective, TPS or polynomial (nearly collinear for a
-        polynomial); for TPS, src points repeated or closer than 1e-4 of the
-        GCPs' extent with different dst points (exact duplicates, same src and
-        same dst, are skipped as GDAL does and listed in ``model.skipped``).
+        polynomial); for TPS, src points repeated with different dst points
+        (exact duplicates, same src and same dst, are skipped as GDAL does and
+        listed in ``model.skipped``), neighbouring GCPs whose dst points are
+        more than 40 times further apart than the GCPs' typical slope allows
+        for their distance in src (the spline would fold between them), or
+        coordinates beyond +/-1e100.
     TypeError
         If an array is complex, bool or text, or the order is not a number.
 

@@ -352,15 +352,24 @@ def newton_inverse(model, start, tolerance, max_iterations, failure, floor=0.0):
         points = start(targets)
         error = np.full(len(targets), np.inf)
         for _iteration in range(int(max_iterations)):
-            difference = model(points) - targets
-            error = np.hypot(difference[:, 0], difference[:, 1])
-            if not (error > limit).any():
+            # a step where the model folds can throw a point to infinity: it has failed, and
+            # the model is not evaluated there (its own check would blame the caller's points)
+            finite = np.isfinite(points).all(axis=1)
+            difference = np.full_like(points, np.inf)
+            if finite.any():
+                difference[finite] = model(points[finite]) - targets[finite]
+            with np.errstate(over="ignore", invalid="ignore"):
+                error = np.hypot(difference[:, 0], difference[:, 1])
+            active = finite & (error > limit) & np.isfinite(error)
+            if not active.any():
                 break
-            jacobian = model.jacobian(points)
+            jacobian = model.jacobian(points[active])
             usable = np.abs(np.linalg.det(jacobian)) > 1e-300
-            step = np.zeros_like(points)
-            step[usable] = np.linalg.solve(jacobian[usable], difference[usable][..., None])[..., 0]
-            points = points - step
+            step = np.zeros((int(active.sum()), 2))
+            step[usable] = np.linalg.solve(jacobian[usable],
+                                           difference[active][usable][..., None])[..., 0]
+            points = points.copy()
+            points[active] = points[active] - step
         failed = ~(error <= limit)
         if failed.any():
             raise ModelError(failure(failed, targets))
