@@ -28,46 +28,11 @@ import numpy as np
 from . import _proj
 from .errors import CRSError, DataError, GridError
 from .language import _
-from .validation import as_crs as _as_crs
-from .validation import as_points
+from .validation import as_crs, as_points
 
 __all__ = ["as_crs", "transform_points", "datum_shift", "DatumShift", "transformations",
            "Transformation", "transformation_at", "SHIFT_GRIDS", "ShiftGrid", "read_shift_grid",
            "grid_shift", "geocentric_translation"]
-
-def as_crs(crs, name="crs"):
-    """A rasterio CRS from a code, a string or a CRS, refusing one PROJ does not know.
-
-    Parameters
-    ----------
-    crs : str, int or rasterio.crs.CRS
-        ``"EPSG:29193"``, ``29193``, a WKT or PROJ string, or a CRS.
-    name : str
-        The argument's name, for the error message.
-
-    Returns
-    -------
-    rasterio.crs.CRS
-
-    Raises
-    ------
-    CRSError
-        If ``crs`` is None or PROJ does not recognise it; if PROJ's database is not found (a
-        broken install: ``PROJ_DATA`` pointing elsewhere), that is what the message says.
-
-    Examples
-    --------
-    >>> as_crs(31983).to_epsg()
-    31983
-    """
-    try:
-        return _as_crs(crs, name)
-    except CRSError:
-        if crs is not None:
-            # "not a CRS that PROJ knows" is every CRS when PROJ has no database
-            _proj.check_database()
-        raise
-
 
 def _network_hint():
     """A sentence naming PROJ_NETWORK when it is on: PROJ then fetches grids it lacks, and a
@@ -199,7 +164,7 @@ def _lon_lat(points, crs):
         # on, no network): rsgeo's own PROJ, offline with its grids, is asked there
         try:
             with np.errstate(all="ignore"):
-                again = _proj.transformer(_wkt(crs), _wkt(_as_crs("EPSG:4326"))).transform(
+                again = _proj.transformer(_wkt(crs), _wkt(as_crs("EPSG:4326"))).transform(
                     points[lost, 0], points[lost, 1])
             lon[lost], lat[lost] = (np.asarray(v, dtype=np.float64) for v in again)
         except Exception:              # pyproj's ProjError: left NaN, refused by the caller

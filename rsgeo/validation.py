@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 
+from ._proj_database import check_database
 from .errors import CRSError, GCPError, GridError, ImageError, RsgeoError
 from .language import N_, _
 
@@ -728,8 +729,9 @@ def as_crs(crs, name="crs"):
 
     Raises
     ------
-    ValueError
-        If ``crs`` is None or PROJ does not recognise it.
+    rsgeo.errors.CRSError
+        If ``crs`` is None or PROJ does not recognise it; if PROJ's database is not found (a
+        broken install: ``PROJ_DATA`` pointing elsewhere), that is what the message says.
 
     Examples
     --------
@@ -748,6 +750,8 @@ def as_crs(crs, name="crs"):
         value = (CRS.from_epsg(crs) if isinstance(crs, (int, np.integer))
                  else CRS.from_user_input(crs))
     except (RasterioCRSError, TypeError, ValueError) as error:
+        # "not a CRS that PROJ knows" is every CRS when PROJ has no database: say that instead
+        check_database()
         raise CRSError(_("{name} {crs!r} is not a CRS that PROJ knows ({error}); give "
                          "an EPSG code such as 'EPSG:31983', a WKT or a PROJ string").format(
                 name=name, crs=crs, error=error)) from None

@@ -322,6 +322,10 @@ def resample_pixels(image, method, nodata, num_threads, cols, rows, packed, size
 # written here, which is GDAL's). Each runs over output rows first_row .. stop_row - 1
 # and returns how many of their pixels it found inside the source; threads share a
 # warp's rows in blocks (rsgeo._kernels._rows).
+#
+# Small helpers are inlined (inline="always"); each inlining is compiled again in every
+# loop that uses it, so the larger pieces (the three bilinear kernels, which the cubic loop
+# also falls back to) are calls: a chapter's first run on a cold cache compiles them once.
 
 
 @njit(cache=CACHE, inline="always")
@@ -487,7 +491,7 @@ def _masked_bilinear_window(col, row):
     return left, top, ratio_x, ratio_y
 
 
-@njit(cache=CACHE, inline="always")
+@njit(cache=CACHE)
 def _bilinear_at(bands, band, col, row):
     """Bilinear value at (col, row): GDAL's GWKBilinearResampleNoMasks4SampleT.
 
@@ -531,7 +535,7 @@ def _bilinear_at(bands, band, col, row):
     return accumulator / (divisor if divisor != 0.0 else 1.0)
 
 
-@njit(cache=CACHE, inline="always")
+@njit(cache=CACHE)
 def _bilinear_masked_at(bands, band, col, row):
     """Bilinear value at (col, row): GDAL's GWKBilinearResample4Sample.
 
@@ -573,7 +577,7 @@ def _bilinear_masked_at(bands, band, col, row):
     return accumulator / (divisor if divisor != 0.0 else 1.0)
 
 
-@njit(cache=CACHE, inline="always")
+@njit(cache=CACHE)
 def _bilinear_valid_at(bands, valid, band, col, row):
     """``_bilinear_masked_at`` over the valid pixels only: (value, found).
 
@@ -703,6 +707,20 @@ def _cubic_window_is_valid(valid, band, top, left):
     return True
 
 
+@njit(cache=CACHE)
+def _bilinear_fallback(bands, valid, band, col, row, masked):
+    """The bilinear value cubic falls back to near the edges or invalid pixels: (value, found).
+
+    ``_bilinear_valid_at`` with a source validity mask, else ``_bilinear_masked_at`` or
+    ``_bilinear_at`` as in the bilinear loop; the cubic loop falls back at two places.
+    """
+    if valid.size != 0:
+        return _bilinear_valid_at(bands, valid, band, col, row)
+    if masked:
+        return _bilinear_masked_at(bands, band, col, row), True
+    return _bilinear_at(bands, band, col, row), True
+
+
 @njit(cache=CACHE, nogil=True)
 def _cubic_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out, fill,
                 step, nodata, is_int, low, high, masked, valid):
@@ -751,23 +769,18 @@ def _cubic_loop(bands, cols, rows, packed, first_row, stop_row, row_length, out,
             left, top = int(left_f), int(top_f)
             if not (left >= 1 and left + 2 < width and top >= 1 and top + 2 < height):
                 for band in range(n_bands):
-                    if valid.size != 0:
-                        value, found = _bilinear_valid_at(bands, valid, band, col, row)
-                        if not found:
-                            out[_u(band), _u(k)] = fill[0]
-                            continue
-                    elif masked:
-                        value = _bilinear_masked_at(bands, band, col, row)
+                    value, found = _bilinear_fallback(bands, valid, band, col, row, masked)
+                    if found:
+                        _store(out, band, k, value, step, nodata, is_int, low, high)
                     else:
-                        value = _bilinear_at(bands, band, col, row)
-                    _store(out, band, k, value, step, nodata, is_int, low, high)
+                        out[_u(band), _u(k)] = fill[0]
                 continue
             wx0, wx1, wx2, wx3 = _cubic_weights(dx)
             wy0, wy1, wy2, wy3 = _cubic_weights(dy)
             c = left - 1
             for band in range(n_bands):
                 if valid.size != 0 and not _cubic_window_is_valid(valid, band, top, left):
-                    value, found = _bilinear_valid_at(bands, valid, band, col, row)
+                    value, found = _bilinear_fallback(bands, valid, band, col, row, masked)
                     if found:
                         _store(out, band, k, value, step, nodata, is_int, low, high)
                     else:

@@ -461,7 +461,7 @@ def _gdal_inverse(packed, x, y):
     what GDALGenericInverse2D returns; GDAL uses the point either way.
     """
     steps = int(packed[1])
-    spline = 3
+    spline = np.int64(3)            # a value, not a constant: see evaluate
     start = 3 + int(packed[2])
     x_out, y_out = _spline(packed, start, x, y)
     largest_out = max(abs(x_out), abs(y_out))
@@ -515,7 +515,9 @@ def evaluate(packed, x, y):
     if packed[0] == GDAL_INVERSE:
         u, v, _converged = _gdal_inverse(packed, x, y)
         return u, v
-    return _spline(packed, 0, x, y)
+    # np.int64(0), a value and not a constant: Numba would compile a copy of _spline (and of
+    # _line) for each constant start a caller passes, seconds each on a cold cache
+    return _spline(packed, np.int64(0), x, y)
 
 
 def evaluate_many(packed, points, out):
@@ -529,6 +531,7 @@ def evaluate_many(packed, points, out):
     points : (n, 2) float64 ndarray
     out : (n, 2) float64 ndarray
     """
+    packed = _writable(packed)
     run_in_row_blocks(lambda first, stop: _evaluate_points(packed, points, out, first, stop),
                       points.shape[0], _threads(points.shape[0]))
 
@@ -548,9 +551,16 @@ def invert_many(packed, points, out, converged):
     converged : (n,) bool ndarray
         Whether GDALGenericInverse2D reached its tolerance within its steps.
     """
+    packed = _writable(packed)
     run_in_row_blocks(
         lambda first, stop: _invert_points(packed, points, out, converged, first, stop),
         points.shape[0], _threads(points.shape[0]))
+
+
+def _writable(packed):
+    """``packed``, or a writable copy of a read-only one (a model's): Numba types a read-only
+    array apart, and would compile the whole spline a second time for it."""
+    return packed if packed.flags.writeable else packed.copy()
 
 
 # points per thread below which one thread evaluates them all (a thread's start costs more)

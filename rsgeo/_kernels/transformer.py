@@ -311,7 +311,9 @@ def row_positions(packed, i, n, cols, rows):
     if packed[1] > 0.0 and n > 5:
         _approximate_row(packed, py, n, cols, rows)
     else:
-        _exact(packed, py, cols, rows, 0, n)
+        # np.int64(0), a value and not a constant: Numba compiles a copy of a function for
+        # each constant argument a caller passes (rsgeo._kernels.thin_plate.evaluate)
+        _exact(packed, py, cols, rows, np.int64(0), n)
 
 
 @njit(cache=CACHE)
@@ -389,11 +391,11 @@ def _approximate_row(packed, py, n, cols, rows):
     """
     threshold = packed[1]
     middle = (n - 1) // 2
-    c0, r0 = to_source(packed, pixel_centre(packed, 0), py)
+    c0, r0 = to_source(packed, pixel_centre(packed, np.int64(0)), py)
     c1, r1 = to_source(packed, pixel_centre(packed, middle), py)
     c2, r2 = to_source(packed, pixel_centre(packed, n - 1), py)
     if not (_finite(c0, r0) and _finite(c1, r1) and _finite(c2, r2)):
-        _exact(packed, py, cols, rows, 0, n)
+        _exact(packed, py, cols, rows, np.int64(0), n)
         return
     starts = np.empty(_STACK, dtype=np.int64)
     lengths = np.empty(_STACK, dtype=np.int64)

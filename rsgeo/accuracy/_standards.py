@@ -8,7 +8,7 @@ import numpy as np
 
 from ..errors import GCPError
 from ..language import N_, _
-from ..validation import as_number, as_points, check_choice
+from ..validation import as_finite, as_number, as_points, check_choice
 
 __all__ = [
     "MAP_SCALES", "PEC_CLASSES", "LE90_FACTOR", "VERTICAL_95_FACTOR", "CE90_FACTOR",
@@ -489,12 +489,9 @@ def asprs_vertical(dz):
     >>> result.rmse_z, result.le90, result.accuracy_95
     (1.0, 1.6449, 1.96)
     """
-    try:
-        heights = np.asarray(dz, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise GCPError(_("dz must be numbers, one height error per check point ({error})")
-                       .format(error=error)) from None
-    if heights.ndim != 1 or len(heights) == 0 or not np.isfinite(heights).all():
+    # text, booleans and complex numbers are refused (TypeError), not read as numbers
+    heights = as_finite(dz, "dz", error=GCPError)
+    if heights.ndim != 1 or len(heights) == 0:
         raise GCPError(_("dz must be a non-empty (n,) array of finite height errors, got shape "
                          "{shape}").format(shape=heights.shape))
     rmse_z = float(np.sqrt(np.mean(heights**2)))
