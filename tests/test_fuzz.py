@@ -39,8 +39,9 @@ keeps being checked. ``datum_shift`` draws
 coordinates up to 1e7; 1e30 has its own test (PROJ did not return on it).
 
 Time: about 3 s with Numba's cache of rsgeo's kernels in place. The first run after a change to
-one of rsgeo's compiled modules (which empties that cache) first compiles the kernels for every
-dtype and method the examples reach, about 56 of them: some 7 minutes on a 2-core machine.
+one of rsgeo's compiled modules (which empties that cache) first compiles the loops the examples
+reach: each interpolating loop for uint8 and for float64 (every other type is read as float64),
+nearest for the four widths of its bits, a few CPU-seconds each.
 """
 
 import math

@@ -37,8 +37,11 @@ def graded(tmp_path_factory):
     folder = plant(tmp_path_factory.mktemp("submissions"))
     course = slice_course(tmp_path_factory.mktemp("course"))
     out = folder.parent / "grades" / "grades.csv"
+    # the grader's limit on a cell is wall-clock time (a sleeping student uses no CPU): 30 s
+    # stops the looping and the sleeping students, and no honest cell comes near it on a
+    # loaded machine (4 s did: an honest cell timed out beside a busy CI)
     run = subprocess.run([sys.executable, str(ROOT / "exercises" / "grade.py"), str(folder),
-                          "--out", str(out), "--jobs", "2", "--cell-timeout", "4",
+                          "--out", str(out), "--jobs", "2", "--cell-timeout", "30",
                           "--memory-mb", "3072", "--course", str(course)],
                          capture_output=True, text=True, timeout=600)
     planted = [path for path in PLANTED if path.exists()]
