@@ -40,7 +40,9 @@ def measure(command, cache, cwd):
     """(CPU-seconds, wall seconds) of ``command`` run with Numba's cache in ``cache``."""
     environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
     before, start = children_cpu(), time.perf_counter()
-    subprocess.run(command, cwd=cwd, env=environment, check=True, capture_output=True)
+    run = subprocess.run(command, cwd=cwd, env=environment, capture_output=True, text=True)
+    if run.returncode != 0:
+        raise SystemExit(f"{' '.join(command)} failed:\n{run.stdout[-3000:]}{run.stderr[-2000:]}")
     return children_cpu() - before, time.perf_counter() - start
 
 

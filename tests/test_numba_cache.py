@@ -1,5 +1,7 @@
 """rsgeo._numba_cache: a changed compiled module clears the cache of all of them."""
 
+import pytest
+
 from rsgeo import _numba_cache
 
 
@@ -12,6 +14,15 @@ def make_package(folder):
 
 def cache_files(folder):
     return sorted(path.name for path in folder.rglob("__pycache__/*.nb[ic]"))
+
+
+@pytest.fixture(autouse=True)
+def numba_chooses_its_own_folders(monkeypatch):
+    """Numba's choice without NUMBA_CACHE_DIR (which a user, or a benchmark, may have set):
+    the folder beside the sources, else the user-wide one."""
+    import numba
+
+    monkeypatch.setattr(numba.config, "CACHE_DIR", "")
 
 
 def test_a_changed_callee_clears_its_callers_cache(tmp_path):
