@@ -179,3 +179,16 @@ def test_a_singular_affine_is_refused(singular):
     with pytest.raises(GridError, match="is singular"):
         warp(np.ones((4, 4), np.uint8), singular, (4, 4), affine.Affine.identity())
     assert as_affine(affine.Affine(2, 0, 5, 0, -2, 7)) == affine.Affine(2, 0, 5, 0, -2, 7)
+
+
+@pytest.mark.parametrize("verb", ["measure_shifts", "correlation_tiepoints"])
+def test_the_correlation_bounds_its_upsampling_as_band_misregistration_does(verb):
+    # (1.5 upsample)² complex numbers per window: 10**6 would ask for terabytes
+    from rsgeo.registration import _tiepoints
+
+    image = np.random.default_rng(0).random((128, 128))
+    with pytest.raises(ValueError, match=r"upsample must be .*1000.*got 1000000"):
+        if verb == "measure_shifts":
+            _tiepoints.measure_shifts(image, image, upsample=10**6)
+        else:
+            _tiepoints.correlation_tiepoints(image, image, 32, 32, upsample=10**6)

@@ -234,12 +234,18 @@ def test_tps_refuses_a_near_pair_far_steeper_than_the_gcps():
     np.testing.assert_allclose(model(near_map), near_image, atol=1e-6)
 
 
-def test_tps_refuses_coordinates_whose_squares_overflow():
+@pytest.mark.parametrize("kind, order", [("tps", None), ("linear", None), ("helmert", None),
+                                         ("projective", None), ("polynomial", 1),
+                                         ("polynomial", 3)])
+def test_every_kind_refuses_coordinates_whose_squares_overflow(kind, order):
+    # a linear fit at 1e198 returned one point for every GCP, a polynomial NaN: refused
     image_xy, map_xy = cbers()
-    with pytest.raises(GCPError, match=r"src coordinates as large as .*within \+/-1e\+100"):
-        transforms.fit_transform(map_xy * 1e200, image_xy, "tps")
+    with pytest.raises(GCPError, match=r"src coordinates as large as .*within \+/-1e\+75"):
+        transforms.fit_transform(map_xy * 1e198, image_xy, kind, order)
     with pytest.raises(GCPError, match="dst coordinates"):
-        transforms.fit_transform(map_xy, image_xy * 1e200, "tps")
+        transforms.fit_transform(map_xy, image_xy * 1e200, kind, order)
+    model = transforms.fit_transform(map_xy * 1e68, image_xy, kind, order)    # within: fitted
+    assert np.isfinite(model(map_xy * 1e68)).all()
 
 
 # --- Warps: gdalwarp -tps -et 0, pixel for pixel ---

@@ -6,9 +6,16 @@ reference band, by phase correlation of their gradients.
 import numpy as np
 
 from ..errors import GCPError, ImageError
-from ..language import N_, _
+from ..language import _
 from ..validation import as_image, as_integer, as_number, check_choice
-from ._tiepoints import MAX_EDGE_SHARE, MIN_WINDOW, measure_shifts, one_blas_thread
+from ._tiepoints import (
+    MAX_EDGE_SHARE,
+    MAX_UPSAMPLE,
+    MIN_WINDOW,
+    UPSAMPLE_NEEDED,
+    measure_shifts,
+    one_blas_thread,
+)
 
 __all__ = [
     "BAND_FEATURES", "band_misregistration",
@@ -20,12 +27,6 @@ __all__ = [
 
 #: What :func:`band_misregistration` correlates: each band's gradient magnitude, or the band.
 BAND_FEATURES = ("gradient", "intensity")
-
-
-#: Largest ``upsample`` band_misregistration takes: 1/1000 px is ten times finer than a window's
-#: shift is known, and the upsampled correlation of a window holds (1.5 upsample)² complex
-#: numbers (36 MB at 1000; at 10**6, 36 TB).
-MAX_UPSAMPLE = 1000
 
 
 def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="gradient",
@@ -179,10 +180,7 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
                           "bands").format(n=MIN_WINDOW))
     spacing = window if spacing is None else as_integer(spacing, "spacing", 1, None,
                                                         _("a whole number of pixels"))
-    upsample = as_integer(upsample, "upsample", 1, MAX_UPSAMPLE,
-                          N_("1 / the sub-pixel precision; the upsampled correlation takes "
-                             "(1.5 upsample)² complex numbers per window, and a window's shift "
-                             "is not known to better than a hundredth of a pixel"))
+    upsample = as_integer(upsample, "upsample", 1, MAX_UPSAMPLE, UPSAMPLE_NEEDED)
     iterations = as_integer(iterations, "iterations", 1, None, _("a number of passes"))
     min_reliability = as_number(min_reliability, "min_reliability", 0, None,
                                 _("a peak height in standard deviations; 0 keeps every window"))

@@ -33,10 +33,19 @@ from ..language import N_, _
 from ..validation import as_image, as_integer, as_invertible_affine, as_number, check_choice
 
 __all__ = [
-    "DETECTORS", "MIN_WINDOW", "MAX_EDGE_SHARE", "measure_shifts", "edge_share",
+    "DETECTORS", "MIN_WINDOW", "MAX_EDGE_SHARE", "MAX_UPSAMPLE", "measure_shifts", "edge_share",
     "offsets_against_reference", "ransac_model", "robust_fit", "correlation_tiepoints",
     "feature_tiepoints", "one_blas_thread", "to_map", "apply_model",
 ]
+
+#: Largest ``upsample`` the correlation takes (measure_shifts, correlation_tiepoints,
+#: band_misregistration): 1/1000 px is ten times finer than a window's shift is known, and the
+#: upsampled correlation of a window holds (1.5 upsample)² complex numbers (36 MB at 1000; at
+#: 10**6, 36 TB).
+MAX_UPSAMPLE = 1000
+UPSAMPLE_NEEDED = N_("1 / the sub-pixel precision; the upsampled correlation takes "
+                     "(1.5 upsample)² complex numbers per window, and a window's shift "
+                     "is not known to better than a hundredth of a pixel")
 
 
 
@@ -124,7 +133,7 @@ def measure_shifts(reference, moving, step=64, window=64, upsample=20, taper=Fal
         raise ImageError(_("reference and moving hold NaN or infinite values; crop or fill them "
                            "first"))
     step = as_integer(step, "step", 1, None, _("a whole number of pixels"))
-    upsample = as_integer(upsample, "upsample", 1, None, _("1 / the sub-pixel precision"))
+    upsample = as_integer(upsample, "upsample", 1, MAX_UPSAMPLE, UPSAMPLE_NEEDED)
     window = as_integer(window, "window", MIN_WINDOW, None,
                         _("a correlation window needs at least {n} × {n} pixels").format(
                             n=MIN_WINDOW))
@@ -621,7 +630,7 @@ def correlation_tiepoints(reference, moving, spacing, window, reference_transfor
     iterations = as_integer(iterations, "iterations", 1, None, _("a number of passes"))
     spacing = as_integer(spacing, "spacing", 1, None, _("a whole number of pixels"))
     seed = as_integer(seed, "seed", 0, None, _("the seed of the RANSAC outlier test"))
-    upsample = as_integer(upsample, "upsample", 1, None, _("1 / the sub-pixel precision"))
+    upsample = as_integer(upsample, "upsample", 1, MAX_UPSAMPLE, UPSAMPLE_NEEDED)
     window = as_integer(window, "window", MIN_WINDOW, None,
                         _("a correlation window needs at least {n} × {n} pixels").format(
                             n=MIN_WINDOW))

@@ -27,6 +27,8 @@ corner at (0, 0).
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from ..errors import GCPError
 from ..language import _
 from ..validation import as_points
@@ -236,6 +238,13 @@ def n_parameters(kind, order=None, n_gcps=None):
     return 2 * (int(n_gcps) + 3)
 
 
+#: Largest |coordinate| a model is fitted to: least squares square the coordinates, and a
+#: spline's collinearity test multiplies two sums of squares (x**4 for 2,000 GCPs overflows
+#: float64 beyond about 1e76); a linear fit at 1e198 returned one point for every GCP, a
+#: polynomial NaN.
+MAX_COORDINATE = 1e75
+
+
 def _fit_inputs(src, dst, kind, order):
     """Checked (n, 2) arrays and the registry entry; enough GCPs for the kind."""
     src = as_points(src, "src")
@@ -249,6 +258,15 @@ def _fit_inputs(src, dst, kind, order):
                           "{n_src}") if entry.kind == "polynomial" else
                         _("a {kind!r} model needs at least {min_gcps} GCPs, got {n_src}")).format(
                 order=entry.order, kind=entry.kind, min_gcps=entry.min_gcps, n_src=len(src)))
+    for name, points in (("src", src), ("dst", dst)):
+        largest = float(np.abs(points).max(initial=0.0))
+        if largest > MAX_COORDINATE:
+            raise GCPError(_(
+                "a {kind!r} model cannot be fitted to {name} coordinates as large as "
+                "{largest:.3g}: its fit squares them (or their distances), which overflows "
+                "float64; coordinates must lie within +/-{bound:g} (map metres or degrees, "
+                "image pixels)").format(kind=entry.kind, name=name, largest=largest,
+                                        bound=MAX_COORDINATE))
     return src, dst, entry
 
 
@@ -301,8 +319,8 @@ def fit_transform(src, dst, kind, order=None):
         (exact duplicates, same src and same dst, are skipped as GDAL does and
         listed in ``model.skipped``), neighbouring GCPs whose dst points are
         more than 40 times further apart than the GCPs' typical slope allows
-        for their distance in src (the spline would fold between them), or
-        coordinates beyond +/-1e100.
+        for their distance in src (the spline would fold between them); for
+        every kind, coordinates beyond +/-1e75 (``MAX_COORDINATE``).
     TypeError
         If an array is complex, bool or text, or the order is not a number.
 

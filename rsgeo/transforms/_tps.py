@@ -282,23 +282,6 @@ TPS_MAX_SLOPE_RATIO = 40.0
 #: partner is held by them, and the check stays O(n log n) for tens of thousands of GCPs.
 _TPS_NEIGHBOURS = 8
 
-#: Largest |coordinate| a spline is fitted to: it sums squared distances times their logarithm
-#: (and its k-d tree squares them), which overflow float64 beyond about 1e150.
-TPS_MAX_COORDINATE = 1e100
-
-
-def _check_magnitudes(src, dst):
-    """Refuse coordinates whose squared distances overflow float64."""
-    for name, points in (("src", src), ("dst", dst)):
-        largest = float(np.abs(points).max())
-        if largest > TPS_MAX_COORDINATE:
-            raise GCPError(_(
-                "a 'tps' model cannot be fitted to {name} coordinates as large as {largest:.3g}: "
-                "the spline squares the distances between GCPs, which overflow float64; "
-                "coordinates must lie within +/-{bound:g} (map metres or degrees, image "
-                "pixels)").format(name=name, largest=largest, bound=TPS_MAX_COORDINATE))
-
-
 def _typical_slope(src, dst):
     """The GCPs' typical |d dst| / |d src|: the RMS singular value of their least-squares
     affine map's linear part (0 where every dst point is the same)."""
@@ -345,7 +328,6 @@ def _check_slopes(src, dst, keep):
 def fit_tps(src, dst):
     """The spline through every GCP; exact duplicates skipped (as GDAL does); src points
     repeated with different dst, or neighbours far steeper than the set, refused."""
-    _check_magnitudes(src, dst)
     _unique, first, inverse_index = np.unique(src, axis=0, return_index=True,
                                               return_inverse=True)
     inverse_index = np.ravel(inverse_index)
