@@ -71,13 +71,21 @@ def _digest(folder):
     return digest.hexdigest()
 
 
-def refresh(folder=_FOLDER):
+def _places(folder):
+    """{module name: the folder Numba caches it in, or None} for the compiled modules found."""
+    return {name: cache_folder(folder / f"{name}.py") for name in COMPILED_MODULES
+            if (folder / f"{name}.py").exists()}
+
+
+def refresh(folder=_FOLDER, places=None):
     """Remove the compiled modules' cache files wherever any of their sources changed.
 
     Parameters
     ----------
     folder : path-like
         The package's folder.
+    places : dict, optional
+        Where Numba caches each module (:func:`_places`), if already asked.
 
     Returns
     -------
@@ -89,13 +97,12 @@ def refresh(folder=_FOLDER):
         digest = _digest(folder)
     except OSError:
         return False            # an unusual install (a zip): leave Numba's cache alone
-    places = {}
-    for name in COMPILED_MODULES:
-        place = cache_folder(folder / f"{name}.py")
+    modules_in = {}
+    for name, place in (_places(folder) if places is None else places).items():
         if place is not None:
-            places.setdefault(place, []).append(Path(name).name)
+            modules_in.setdefault(place, []).append(Path(name).name)
     removed = False
-    for place, modules in places.items():
+    for place, modules in modules_in.items():
         stamp = place / _STAMP
         try:
             if stamp.read_text() == digest:
@@ -114,11 +121,9 @@ def refresh(folder=_FOLDER):
     return removed
 
 
-def _cache_available(folder=_FOLDER):
+def _cache_available(places):
     """Whether Numba can cache every compiled module; warns once when it cannot."""
-    missing = [name for name in COMPILED_MODULES
-               if (folder / f"{name}.py").exists()
-               and cache_folder(folder / f"{name}.py") is None]
+    missing = [name for name, place in places.items() if place is None]
     if missing:
         warnings.warn(_(
             "Numba has no writable folder to cache rsgeo's compiled kernels in (not beside "
@@ -128,7 +133,9 @@ def _cache_available(folder=_FOLDER):
     return not missing
 
 
-refresh()
+# Numba is asked once where each module's cache goes: the refresh and the choice below share it
+_PLACES = _places(_FOLDER)
+refresh(_FOLDER, _PLACES)
 #: Whether rsgeo's kernels are compiled with ``cache=True`` (False when Numba has no
 #: writable cache folder for them).
-CACHE = _cache_available()
+CACHE = _cache_available(_PLACES)
