@@ -156,8 +156,8 @@ def test_no_module_imports_another_modules_private_names(package):
     assert not found, found
 
 
-# DESIGN.md (outside the repository) or an issue number, this project's or another's: a reader
-# of the repository can follow neither
+# the design notes kept outside the repository, or an issue number, this project's or
+# another's: a reader of the repository can follow neither
 _CITED_FILE = re.compile(r"\bDESIGN\.md\b|\.\./shared/")
 _ISSUE_NUMBER = re.compile(r"\b[Ii]ssues? #?\d+\b|\bpull request #?\d+\b")
 
