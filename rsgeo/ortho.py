@@ -30,6 +30,8 @@ given ``RPC_DEM`` its error threshold is 0 (exact) unless ``-et`` says
 otherwise.
 """
 
+from functools import partial
+
 import numpy as np
 from numba import njit
 
@@ -306,14 +308,11 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         # empty arrays tell the compiled pass to take the grid's or the DEM's own coordinates
         lon, lat, dem_x, dem_y = _strip_coordinates(dst_gt, shape, start, stop, dst_crs,
                                                     dem_crs)
-        strip_counts = counts[:stop - start]
-
-        def strip_rows_positions(first, last, start=start, lon=lon, lat=lat, dem_x=dem_x,
-                                 dem_y=dem_y, strip_counts=strip_counts):
-            return _ortho_positions(dst_gt, start, shape[1], lon, lat, dem_x, dem_y, dem_work,
-                                    dem_inverse, packed, width, height, cols, rows,
-                                    strip_counts, first, last)
-        run_in_row_blocks(strip_rows_positions, stop - start, num_threads)
+        # the strip's rows shared among threads: each call computes rows first .. last - 1
+        run_in_row_blocks(partial(_ortho_positions, dst_gt, start, shape[1], lon, lat, dem_x,
+                                  dem_y, dem_work, dem_inverse, packed, width, height, cols,
+                                  rows, counts[:stop - start]),
+                          stop - start, num_threads)
         found = counts[:stop - start].sum(axis=0)
         if found[_OUTSIDE_DEM] or found[_OVER_HOLE]:
             # the NumPy path of dem_height over this strip, for the messages' counts and
