@@ -41,7 +41,8 @@ def outside_mask(shape, inverse, x, y):
     with np.errstate(invalid="ignore", over="ignore"):   # infinite points: NaN, outside
         px = inverse[0] + x * inverse[1] + y * inverse[2]
         py = inverse[3] + x * inverse[4] + y * inverse[5]
-    return ~((px > -1) & (py > -1) & (np.trunc(px) < shape[1]) & (np.trunc(py) < shape[0]))
+    # GDAL 3.10's GDALInterpolateAtPoint: inside for 0 <= px <= cols, 0 <= py <= rows
+    return ~((px >= 0) & (py >= 0) & (px <= shape[1]) & (py <= shape[0]))
 
 
 def grid_bounds(shape, transform):

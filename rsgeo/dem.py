@@ -1,9 +1,11 @@
 """Heights from a DEM, sampled as GDAL's RPC transformer samples them, and where lines of sight
 meet the ground.
 
-The DEM is sampled as GDALRPCGetDEMHeight does it with bilinear interpolation: at
-(x - 0.5, y - 0.5) in DEM pixels, the index truncated toward zero, falling back to the nearest
-DEM cell where the 2 x 2 window leaves the DEM.
+The DEM is sampled as GDAL 3.10's GDALRPCGetDEMHeight does it with bilinear interpolation
+(``alg/gdal_interpolateatpoint.cpp``): at (x - 0.5, y - 0.5) in DEM pixels, the 2 x 2 window's
+indices clamped to the DEM, so that within its outer half cell the height is interpolated along
+the edge; a point is on the DEM for 0 <= x <= columns and 0 <= y <= rows (DEM pixels). GDAL 3.9
+and earlier truncated the index toward zero and took the nearest cell at the edge.
 """
 
 import numpy as np

@@ -821,15 +821,18 @@ def as_broadcast(arrays, names, error=RsgeoError):
                             shapes=shapes)) from None
 
 
-def as_lon_lat_height(lon, lat, height):
+def as_lon_lat_height(lon, lat, height, west=-180.0):
     """Longitudes, latitudes and heights checked (degrees, metres) and broadcast together.
 
     Parameters
     ----------
     lon, lat : array_like
-        Degrees: longitude in [-180, 360], latitude in [-90, 90].
+        Degrees: longitude in [west, 360], latitude in [-90, 90].
     height : array_like
         Metres.
+    west : float
+        The westernmost longitude accepted: -180, or -360 where a model folds longitudes
+        around its own centre (an RPC near the antimeridian reaches a little west of -180).
 
     Returns
     -------
@@ -849,10 +852,10 @@ def as_lon_lat_height(lon, lat, height):
     if np.any(np.abs(lat) > 90):
         raise CRSError(_("lat must be in [-90, 90] degrees, got {few} (longitude and "
                          "latitude swapped?)").format(few=few_values(lat[np.abs(lat) > 90])))
-    if np.any((lon < -180) | (lon > 360)):
-        raise CRSError(_("lon must be in [-180, 360] degrees, got {few} (projected "
+    if np.any((lon < west) | (lon > 360)):
+        raise CRSError(_("lon must be in [{west:g}, 360] degrees, got {few} (projected "
                          "metres given instead of degrees?)").format(
-                few=few_values(lon[(lon < -180) | (lon > 360)])))
+                west=west, few=few_values(lon[(lon < west) | (lon > 360)])))
     return as_broadcast([lon, lat, height], ["lon", "lat", "height"])
 
 

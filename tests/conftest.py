@@ -21,8 +21,8 @@ MODULE_MARKERS = {
                   "test_readme", "test_i18n", "test_book_html", "test_portuguese_book"},
     "browser": {"test_browser", "test_pdf"},
     "gdal": {"test_gcp", "test_georef", "test_resample", "test_terrain", "test_transforms",
-             "test_data", "test_gdal_autotest_warp", "test_fuzz", "test_fuzz_verbs",
-             "test_global_state"},
+             "test_data", "test_gdal_autotest_warp", "test_gdal_autotest_rpc", "test_fuzz",
+             "test_fuzz_verbs", "test_global_state"},
 }
 
 

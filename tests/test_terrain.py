@@ -184,7 +184,7 @@ def test_project_refuses_out_of_range_coordinates():
     rpc = RPCModel.from_dict(simple_rpc_dict())
     with pytest.raises(ValueError, match=r"lat must be in \[-90, 90\].*swapped"):
         rpc.project(-8.0, -134.9, 0.0)
-    with pytest.raises(ValueError, match=r"lon must be in \[-180, 360\].*metres"):
+    with pytest.raises(ValueError, match=r"lon must be in \[-360, 360\].*metres"):
         rpc.project(290000.0, -8.0, 0.0)
     with pytest.raises(ValueError, match="height holds NaN"):
         rpc.project(LON0, LAT0, np.nan)

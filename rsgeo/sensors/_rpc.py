@@ -25,10 +25,11 @@ RPC_DEM=...``:
   LP², LH², L²P, P³, PH², L²H, P²H, H³), with L the normalised longitude,
   P the latitude, H the height; the sums add even and odd terms separately
   and then the two (GDAL's SSE2 evaluation);
-* the DEM is sampled as ``GDALRPCGetDEMHeight`` does it with bilinear
-  interpolation: at (x − 0.5, y − 0.5) in DEM pixels, the index truncated
-  toward zero, falling back to the nearest DEM cell where the 2 × 2 window
-  leaves the DEM.
+* the DEM is sampled as GDAL 3.10's ``GDALRPCGetDEMHeight`` does it with
+  bilinear interpolation: at (x − 0.5, y − 0.5) in DEM pixels, the window's
+  indices clamped to the DEM, so that within its outer half cell the height
+  is still interpolated along the edge (GDAL 3.9 and earlier took the nearest
+  cell there); a point is on the DEM for 0 ≤ x ≤ columns, 0 ≤ y ≤ rows.
 """
 
 import numpy as np
@@ -275,9 +276,9 @@ class RPCModel:
         ------
         ValueError
             If a latitude is outside [-90, 90], a longitude outside
-            [-180, 360], or a value is not finite.
+            [-360, 360], or a value is not finite.
         """
-        lon, lat, height = as_lon_lat_height(lon, lat, height)
+        lon, lat, height = as_lon_lat_height(lon, lat, height, west=-360.0)
         diff = lon - self.offsets["LONG"]
         diff = np.where(diff < -270, diff + 360, np.where(diff > 270, diff - 360, diff))
         return (diff / self.scales["LONG"], (lat - self.offsets["LAT"]) / self.scales["LAT"],
@@ -303,7 +304,7 @@ class RPCModel:
         ------
         ValueError
             If a latitude is outside [-90, 90], a longitude outside
-            [-180, 360], or a value is not finite.
+            [-360, 360], or a value is not finite.
 
         Examples
         --------
@@ -312,7 +313,10 @@ class RPCModel:
         >>> float(col), float(row)
         (500.5, 500.5)
         """
-        lon, lat, height = as_lon_lat_height(lon, lat, height)
+        # RPCTransformPoint folds a longitude 270 degrees or more from LONG_OFF by 360, so an
+        # RPC over the antimeridian sees ground a little west of -180 (GDAL autotest
+        # transformer.py, test_transformer_15)
+        lon, lat, height = as_lon_lat_height(lon, lat, height, west=-360.0)
         shape = lon.shape
         cols, rows = np.empty(lon.size), np.empty(lon.size)
         # one compiled pass, point by point (no array per term), GDAL's operations in order
@@ -387,7 +391,8 @@ class RPCModel:
             a, b = (c1 - c0) / step_lon, (c2 - c0) / step_lat
             c, d = (r1 - r0) / step_lon, (r2 - r0) / step_lat
             det = a * d - b * c
-            lon = np.clip(lon - (d * dc - b * dr) / det, -180.0, 360.0)
+            # longitude free to cross the antimeridian, as in GDAL's inverse (RPCInverseTransform)
+            lon = np.clip(lon - (d * dc - b * dr) / det, -360.0, 360.0)
             lat = np.clip(lat - (-c * dc + a * dr) / det, -90.0, 90.0)
         c0, r0 = self.project(lon, lat, height)
         bad = np.maximum(np.abs(c0 - col), np.abs(r0 - row)) >= tolerance
