@@ -1,18 +1,20 @@
 """Orthorectification with RPCs and a DEM, as GDAL does it; the orthoimage checked on the image.
 
-Measured agreement with GDAL 3.10 through rasterio (``tests/test_terrain.py``):
-:meth:`~rsgeo.sensors.RPCModel.project` is GDAL's ``RPCTransformer`` to the last bit at
-random (lon, lat, h); :func:`orthorectify` gives ``reproject(...,
-rpcs=..., RPC_DEM=..., tolerance=0)``'s pixels bit for bit for nearest,
-bilinear and cubic, with the output grid in EPSG:4326 or UTM, with the DEM's
-nearest fallback at its edge, and without a destination nodata or with
-nodata 255. One difference remains: with nodata 0, a valid pixel whose cubic
-value rounds to 0 (Keys' kernel overshoots below 0 beside dark pixels) is
-moved to 1 by rsgeo (GDAL's "AvoidNoData", which rsgeo.resample applies as
-GDAL's VRT warps do) and left at 0 by ``reproject``: about 0.5 % of the valid
-pixels of a uniform-noise image, each by 1 DN. GDAL 3.10 replaces a valid value
-that collides with the destination nodata inconsistently across its warp paths
-(its developers made it consistent in GDAL 3.11).
+Measured agreement with GDAL 3.10.3 through rasterio 1.4.4 (``tests/test_terrain.py``,
+``tests/test_gdal_autotest_rpc.py``): :meth:`~rsgeo.sensors.RPCModel.project` is GDAL's
+``RPCTransformer`` to the last bit at random (lon, lat, h); the DEM is sampled as GDAL 3.10
+samples it (bilinear, interpolated along its edges); :func:`orthorectify` gives the pixels of
+``reproject(..., rpcs=..., RPC_DEM=...)`` (GDAL's warper, whose transformer is exact when
+``RPC_DEM`` is given, whatever ``tolerance`` says) bit for bit for nearest, bilinear and cubic,
+with the output grid in EPSG:4326 or UTM, finer than the image or coarser (where GDAL widens
+bilinear and cubic: rsgeo computes gdalwarp's kernel scale for the whole grid, one chunk of
+gdalwarp's, or takes the ``scale`` given), and without a destination nodata or with nodata 255.
+One difference remains: with nodata 0, a valid pixel whose cubic value rounds to 0 (Keys'
+kernel overshoots below 0 beside dark pixels) is moved to 1 by rsgeo (GDAL's "AvoidNoData",
+which rsgeo.resample applies as GDAL's VRT warps do) and left at 0 by ``reproject``: about
+0.5 % of the valid pixels of a uniform-noise image, each by 1 DN. GDAL 3.10 replaces a valid
+value that collides with the destination nodata inconsistently across its warp paths (its
+developers made it consistent in GDAL 3.11).
 
 How :func:`orthorectify` computes, strip of output rows by strip (GDAL's
 warper asks its transformer row by row): one compiled pass (Numba) gives
@@ -24,8 +26,8 @@ grid, the longitude and latitude come from the grid's geotransform, with no
 PROJ. PROJ, which cannot run compiled, transforms a projected grid's cells
 (and the DEM's, when the DEM is projected) strip by strip, through
 ``rasterio.warp.transform``. Then
-:func:`rsgeo.resample.interpolate`. ``benchmarks/orthorectify.py`` times it
-against GDAL. Note that gdalwarp does not approximate RPC + DEM by default:
+:func:`rsgeo.resample.interpolate`, with the kernel scale gdalwarp computes.
+``benchmarks/orthorectify.py`` times it against GDAL. Note that gdalwarp does not approximate RPC + DEM by default:
 given ``RPC_DEM`` its error threshold is 0 (exact) unless ``-et`` says
 otherwise.
 """
@@ -44,7 +46,7 @@ from .dem import prepare_dem, raise_dem_problems, sample_dem
 from .errors import GridError, ImageError
 from .language import _, prose_number
 from .registration import measure_shifts
-from .resample import METHODS, interpolate
+from .resample import METHODS, grid_scale, interpolate
 from .sensors import RPCModel
 from .validation import (
     as_bands_first,
@@ -53,6 +55,7 @@ from .validation import (
     as_lon_lat_height,
     as_num_threads,
     as_output_shape,
+    as_scale,
     as_shape,
     check_choice,
 )
@@ -160,6 +163,29 @@ def _strip_coordinates(dst_gt, shape, start, stop, dst_crs, dem_crs, every=False
 _EMPTY = np.empty(0)
 
 
+def _gdalwarp_scale(rpc, prepared, dst_gt, shape, dst_crs, dem_crs, image_shape):
+    """gdalwarp's XSCALE, YSCALE for an orthoimage: its grid's edges through the DEM and the RPC.
+
+    As GDALWarpOperation::ComputeSourceWindow for one chunk (the whole grid): the grid's
+    edge points go to longitude and latitude (PROJ), to the DEM (NaN off it: left out) and
+    through the RPC into the image; :func:`rsgeo.resample.grid_scale` does the rest.
+    """
+    import affine
+
+    def to_image(points):
+        lon, lat = to_crs(points[:, 0], points[:, 1], dst_crs, "EPSG:4326")
+        dem_x, dem_y = to_crs(lon, lat, "EPSG:4326", dem_crs)
+        heights = sample_dem(prepared, dem_x, dem_y)[0]
+        found = np.isfinite(heights) & (np.abs(lat) <= 90) & (np.abs(lon) <= 360)
+        positions = np.full((len(points), 2), np.nan)
+        positions[found] = np.column_stack(rpc.project(lon[found], lat[found],
+                                                       heights[found]))
+        return positions
+
+    return grid_scale(to_image, shape, affine.Affine.from_gdal(*dst_gt), image_shape,
+                      skip_failed=True)
+
+
 # cells of one strip of orthorectify: 16 bytes each while it is computed (its source positions)
 # on a grid in EPSG:4326, up to about 100 with PROJ's coordinates for a projected grid and DEM
 _STRIP_CELLS = 2 ** 19
@@ -167,16 +193,24 @@ _STRIP_CELLS = 2 ** 19
 
 def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, method="bilinear",
                  nodata=0, dst_crs=None, dem_crs=None, dem_nodata=None, num_threads=1,
-                 strip_rows=None, dem_vertical=None):
+                 strip_rows=None, dem_vertical=None, scale=None):
     """The orthoimage on an output grid: DEM height, RPC, interpolation, cell by cell.
 
     For each output cell centre: its longitude and latitude (through
     ``dst_crs`` when the grid is projected), its height from the DEM
     (bilinear, GDAL's :func:`~rsgeo.dem.dem_height`), the RPC's image position
     (:meth:`~rsgeo.sensors.RPCModel.project`), and the value there by
-    :func:`rsgeo.resample.interpolate` (GDAL's kernels, plain 2 × 2 and 4 × 4:
-    GDAL's XSCALE = YSCALE = 1). This is ``gdalwarp -rpc -to RPC_DEM=dem.tif
-    -to RPC_DEMINTERPOLATION=bilinear -et 0``.
+    :func:`rsgeo.resample.interpolate` (GDAL's kernels, widened as gdalwarp
+    widens them when the output's pixels are larger than the image's: see
+    ``scale``). This is ``gdalwarp -rpc -to RPC_DEM=dem.tif -to
+    RPC_DEMINTERPOLATION=bilinear`` (whose error threshold is 0, the exact
+    transformer, when ``RPC_DEM`` is given), tested pixel for pixel against
+    GDAL 3.10.3's warper through ``rasterio.warp.reproject`` for nearest,
+    bilinear and cubic, grids in EPSG:4326 and UTM finer and coarser than the
+    image, with GDAL's own kernel scale and with XSCALE = YSCALE = 1
+    (``tests/test_terrain.py``). gdalwarp computes the scale per chunk of its
+    output: on an output too large for its warp memory (64 MB by default) its
+    chunks may get other scales than this one, computed for the whole grid.
 
     Parameters
     ----------
@@ -226,6 +260,17 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         they are (a DEM without a vertical CRS, in GDAL). Forgetting N moves
         every point N·tan θ.
 
+    scale : float or (float, float), optional
+        GDAL's XSCALE and YSCALE (``gdalwarp -wo XSCALE=… -wo YSCALE=…``):
+        output pixels per image pixel along rows and columns; below 0.95,
+        bilinear and cubic are widened over 1/scale image pixels, so that an
+        orthoimage on a coarser grid averages the pixels under each cell
+        instead of aliasing. By default gdalwarp's own: 21 points on each
+        edge of the output grid taken through the DEM and the RPC into the
+        image, the grid's columns (rows) over the width (height) of their
+        bounding box there (:func:`rsgeo.resample.grid_scale`; edge points
+        off the DEM are left out, as GDAL leaves out points its transformer
+        fails on). Give 1 for the plain 2 × 2 and 4 × 4 kernels.
     Returns
     -------
     ndarray
@@ -275,6 +320,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
     shape = as_output_shape(dst_shape, image.dtype, bands, "dst_shape")
     strip_rows = (max(1, _STRIP_CELLS // shape[1]) if strip_rows is None
                   else as_integer(strip_rows, "strip_rows", low=1))
+    scale = None if scale is None else as_scale(scale)
     dst_gt = as_gdal(dst_transform, "dst_transform")
     dst_crs = as_crs("EPSG:4326" if dst_crs is None else dst_crs, "dst_crs")
     dem_crs = as_crs("EPSG:4326" if dem_crs is None else dem_crs, "dem_crs")
@@ -290,6 +336,8 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         # one per output cell. Holes stay NaN. (rsgeo.heights.geoid_on_grid, added in place.)
         add_geoid(prepared[0], dem_transform, dem_crs, dem_vertical)
     height, width = image.shape[-2:]
+    if scale is None:
+        scale = _gdalwarp_scale(rpc, prepared, dst_gt, shape, dst_crs, dem_crs, (height, width))
     num_threads = as_num_threads(num_threads)
     out = np.empty((bands,) + shape, dtype=image.dtype)
     outside, holed = [0, 0.0, 0.0], [0, 0.0, 0.0]
@@ -334,7 +382,8 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         strip_shape = (stop - start, shape[1])
         out[:, start:stop] = interpolate(
             image, cols[:cells].reshape(strip_shape), rows[:cells].reshape(strip_shape),
-            method, nodata=nodata, num_threads=num_threads).reshape((bands,) + strip_shape)
+            method, nodata=nodata, num_threads=num_threads, scale=scale).reshape(
+                (bands,) + strip_shape)
     raise_dem_problems(prepared, outside, holed, shape[0] * shape[1])
     if not seen:
         raise GridError(_("no output cell sees the image ({height} x {width} px): the "

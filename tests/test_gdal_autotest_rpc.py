@@ -168,3 +168,31 @@ def test_transformer_15_against_gdal_3_10(long_off, pixel, ground):
     with RPCTransformer(rpc.to_rasterio(), RPC_HEIGHT=50) as transformer:
         gdal = transformer.xy(pixel[1], pixel[0], offset="ul")
     assert rpc.localize(*pixel, 50.0) == pytest.approx(gdal, abs=3e-6)
+
+
+@pytest.mark.slow
+def test_warp_52_alpha_checksum():
+    """autotest/alg/warp.py, test_warp_52: a 4096 x 4096 RPC image orthorectified onto a
+    4096 x 4096 grid in EPSG:3857 with a DEM in EPSG:3857; its alpha band's GDAL checksum is
+    3177 (3188 before GDAL 3.10 interpolated along the DEM's edges).
+
+    GDAL's alpha is 255 where an output cell's position falls in the image (no source mask:
+    every pixel valid, for cubic as for nearest), which is what ``orthorectify`` gives for an
+    image of 255 with nodata 0 and nearest. The checksum is GDAL's own, through rasterio.
+    """
+    from rasterio.io import MemoryFile
+
+    from rsgeo.ortho import orthorectify
+
+    rpc = RPCModel.from_dict(RPCS["WARP_52"])
+    dem, dem_gt, dem_crs = read_dem("warp_52_dem.tif")
+    resolution = 4.77731426716
+    grid = affine.Affine(resolution, 0, 8453323.83095, 0, -resolution, 4696291.0172)
+    shape = (4096, 4096)
+    image = np.full((4096, 4096), 255, dtype=np.uint8)
+    alpha = orthorectify(image, rpc, dem, dem_gt, grid, shape, "nearest", nodata=0,
+                         dst_crs="EPSG:3857", dem_crs=dem_crs, dem_vertical="ellipsoidal")
+    with MemoryFile() as memory, memory.open(driver="GTiff", width=4096, height=4096, count=1,
+                                             dtype="uint8", transform=grid) as dataset:
+        dataset.write(alpha, 1)
+        assert dataset.checksum(1) == 3177

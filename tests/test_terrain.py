@@ -1,8 +1,8 @@
 """rsgeo.relief, rsgeo.sensors (RPCs), rsgeo.dem and rsgeo.ortho, with GDAL as the oracle.
 
 GDAL through rasterio: ``RPCTransformer`` for the RPC equations, ``reproject(..., rpcs=...,
-RPC_DEM=...)`` (exact transformer, ``tolerance=0``; DEM bilinear; plain kernels, XSCALE =
-YSCALE = 1) for the orthoimage. The synthetic DEMs are heights above the ellipsoid
+RPC_DEM=...)`` for the orthoimage (given RPC_DEM, GDAL's warper uses its exact transformer
+whatever ``tolerance`` says; DEM bilinear; GDAL's own kernel scale, or XSCALE = YSCALE given). The synthetic DEMs are heights above the ellipsoid
 (``dem_vertical="ellipsoidal"``), as GDAL takes a DEM without a vertical CRS; with
 ``"EGM96"`` the orthoimage is GDAL's on the DEM plus PROJ's geoid undulation.
 """
@@ -70,8 +70,12 @@ def scene():
 
 
 def gdal_ortho(image, rpc, dem, dem_gt, dst_gt, shape, method, nodata, dst_crs="EPSG:4326",
-               dem_crs="EPSG:4326"):
-    """gdalwarp -rpc -to RPC_DEM=dem.tif -to RPC_DEMINTERPOLATION=bilinear -et 0, via rasterio."""
+               dem_crs="EPSG:4326", scale=None):
+    """gdalwarp -rpc -to RPC_DEM=dem.tif -to RPC_DEMINTERPOLATION=bilinear (-et 0), via rasterio.
+
+    GDAL's own kernel scale unless ``scale`` gives XSCALE = YSCALE.
+    """
+    options = {} if scale is None else {"XSCALE": scale, "YSCALE": scale}
     from rasterio.warp import Resampling, reproject
 
     with tempfile.TemporaryDirectory() as folder:
@@ -82,8 +86,8 @@ def gdal_ortho(image, rpc, dem, dem_gt, dst_gt, shape, method, nodata, dst_crs="
         out = np.zeros(tuple(shape), dtype=image.dtype)
         reproject(image, out, rpcs=rpc.to_rasterio(), src_crs="EPSG:4326", dst_transform=dst_gt,
                   dst_crs=dst_crs, resampling=getattr(Resampling, method), dst_nodata=nodata,
-                  src_nodata=None, tolerance=0, init_dest_nodata=True, RPC_DEM=path,
-                  RPC_DEMINTERPOLATION="bilinear", XSCALE=1, YSCALE=1)
+                  src_nodata=None, init_dest_nodata=True, RPC_DEM=path,
+                  RPC_DEMINTERPOLATION="bilinear", **options)
     return out
 
 
@@ -280,6 +284,53 @@ def test_orthorectify_dem_edge_fallback_matches_gdal(scene):
                             dem_vertical="ellipsoidal")
         gdal = gdal_ortho(image, rpc, crop, crop_gt, grid, shape, method, None)
         assert np.count_nonzero(ours != gdal) == 0
+
+
+COARSER_GRIDS = {
+    # 0.00045° (about 50 m) and 0.0003° (33 m) cells from 20 m raw pixels: scale 0.4 to 0.6
+    "4326_50m": (affine.Affine(0.00045, 0, LON0 - 0.05, 0, -0.00045, LAT0 + 0.05), (222, 222),
+                 "EPSG:4326"),
+    "4326_33m": (affine.Affine(0.0003, 0, LON0 - 0.05, 0, -0.0003, LAT0 + 0.05), (333, 333),
+                 "EPSG:4326"),
+    "utm_50m": (None, (200, 200), "EPSG:31985"),
+}
+
+
+def coarser_grid(name):
+    from rasterio.warp import transform
+
+    grid, shape, crs = COARSER_GRIDS[name]
+    if grid is None:
+        (x,), (y,) = transform("EPSG:4326", crs, [LON0], [LAT0])
+        grid = affine.Affine(50.0, 0, round(x) - 5000, 0, -50.0, round(y) + 5000)
+    return grid, shape, crs
+
+
+@pytest.mark.parametrize("name", sorted(COARSER_GRIDS))
+@pytest.mark.parametrize("method", ["bilinear", "cubic"])
+@pytest.mark.parametrize("nodata", [None, 255])
+def test_orthorectify_on_a_coarser_grid_widens_as_gdalwarp(scene, name, method, nodata):
+    """gdalwarp's default kernel scale (no XSCALE): rsgeo computes the same, pixel for pixel."""
+    _, rpc, dem, dem_gt, image = scene
+    grid, shape, crs = coarser_grid(name)
+    ours = orthorectify(image, rpc, dem, dem_gt, grid, shape, method, nodata=nodata,
+                        dst_crs=crs, dem_vertical="ellipsoidal")
+    gdal = gdal_ortho(image, rpc, dem, dem_gt, grid, shape, method, nodata, dst_crs=crs)
+    assert np.count_nonzero(ours != gdal) == 0
+    # measured: the plain kernels (scale 1) differ from GDAL's at 87 to 99 % of the pixels
+    plain = orthorectify(image, rpc, dem, dem_gt, grid, shape, method, nodata=nodata,
+                         dst_crs=crs, dem_vertical="ellipsoidal", scale=1)
+    assert np.mean(plain != gdal) > 0.5
+    assert np.count_nonzero(plain != gdal_ortho(image, rpc, dem, dem_gt, grid, shape, method,
+                                                nodata, dst_crs=crs, scale=1)) == 0
+
+
+def test_orthorectify_scale_is_refused_when_not_positive(scene):
+    _, rpc, dem, dem_gt, image = scene
+    grid, shape, crs = coarser_grid("4326_50m")
+    with pytest.raises(ValueError, match="scale"):
+        orthorectify(image, rpc, dem, dem_gt, grid, shape, "bilinear", scale=0,
+                     dem_vertical="ellipsoidal")
 
 
 def test_orthorectify_projected_grid_against_gdal(scene):
@@ -645,8 +696,10 @@ def test_forgetting_the_geoid_moves_the_orthoimage_by_n_tan_theta(scene):
     grid, shape = GEOID_GRID
     ramp = _column_ramp()
     truth, right, forgot = (
+        # plain bilinear (scale 1) reads the ramp's column exactly; on this coarser grid
+        # gdalwarp's widened kernel would average it over several columns
         orthorectify(ramp, rpc, heights, dem_gt, grid, shape, "bilinear", nodata=None,
-                     dem_vertical=vertical)
+                     dem_vertical=vertical, scale=1)
         for heights, vertical in ((dem, "ellipsoidal"), (above_geoid, "EGM96"),
                                   (above_geoid, "ellipsoidal")))
     assert np.abs(right - truth).max() < 1e-6
@@ -693,7 +746,7 @@ def test_orthorectify_egm96_is_n_at_each_point_as_gdal_applies_it(scene):
     _, rpc, dem, dem_gt, _ = scene
     grid, shape = GEOID_GRID
     ours = orthorectify(_column_ramp(), rpc, dem, dem_gt, grid, shape, "bilinear", nodata=None,
-                        dem_vertical="EGM96")
+                        dem_vertical="EGM96", scale=1)         # plain bilinear reads the column
     lon, lat = np.meshgrid(grid.c + (np.arange(shape[1]) + 0.5) * grid.a,
                            grid.f + (np.arange(shape[0]) + 0.5) * grid.e)
     h = dem_height(dem, dem_gt, lon, lat) + geoid_undulation(lon, lat)

@@ -580,7 +580,8 @@ def nothing_lands_message(mapping, spans, width, height):
                           row_high=prose_number(spans[:, 3].max()), width=width, height=height)
 
 
-def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
+def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21,
+               skip_failed=False):
     """GDAL's XSCALE, YSCALE for warping onto a grid: output pixels per source pixel.
 
     As ``GDALWarpOperation`` computes them for one chunk: the output grid's
@@ -603,6 +604,11 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
         Source image size, to cut the window to; not cut if omitted.
     samples : int
         Points per edge.
+    skip_failed : bool
+        Leave out the edge points that ``mapping`` gives NaN for (points a
+        transformer could not take to the source, such as a point off its
+        DEM), as GDAL leaves out the points its transformer fails on; by
+        default a NaN is an error.
 
     Returns
     -------
@@ -634,6 +640,10 @@ def grid_scale(mapping, shape, transform=None, src_shape=None, samples=21):
         if source.shape != (x.size, 2):
             raise ModelError(_("mapping must return an (n, 2) array of (col, row), got "
                                "shape {source_shape}").format(source_shape=source.shape))
+        if skip_failed:
+            source = source[np.isfinite(source).all(axis=1)]
+            if not len(source):
+                return 1.0, 1.0               # no point reaches the source: nothing to widen
         source_cols, source_rows = _check_positions(source[:, 0], source[:, 1])
     spans = [source_cols.max() - source_cols.min(), source_rows.max() - source_rows.min()]
     if src_shape is not None:
