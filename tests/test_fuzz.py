@@ -1046,8 +1046,8 @@ def _gdal_ortho(image, rpc, dem, dem_gt, dst_gt, shape, method, nodata):
         out = np.zeros(tuple(shape), dtype=image.dtype)
         reproject(image, out, rpcs=rpc.to_rasterio(), src_crs="EPSG:4326", dst_transform=dst_gt,
                   dst_crs="EPSG:4326", resampling=getattr(Resampling, method), dst_nodata=nodata,
-                  src_nodata=None, tolerance=0, init_dest_nodata=True, RPC_DEM=path,
-                  RPC_DEMINTERPOLATION="bilinear", XSCALE=1, YSCALE=1)
+                  src_nodata=None, init_dest_nodata=True, RPC_DEM=path,
+                  RPC_DEMINTERPOLATION="bilinear")          # GDAL's own kernel scale
     return out
 
 
