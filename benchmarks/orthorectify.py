@@ -224,7 +224,7 @@ def rsgeo_runner(image, scene, method, threads, transform=None, shape=None):
         return orthorectify(image, scene.rpc, scene.dem, scene.dem_transform,
                             transform or scene.transform, shape or (scene.size, scene.size),
                             method, nodata=0, dst_crs=scene.crs, dem_crs=scene.dem_crs,
-                            num_threads=threads, dem_vertical="ellipsoidal")
+                            num_threads=threads, dem_vertical="ellipsoidal", scale=1)
     return run
 
 
