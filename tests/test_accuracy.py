@@ -432,3 +432,99 @@ def test_elongated_errors_get_the_nssda_approximation_or_none():
     assert 0.94 < np.mean(np.hypot(*elongated.T) <= result.accuracy_95) < 0.955
     flat = accuracy.asprs_horizontal(rng.normal(0, 1, (1000, 2)) * [4.0, 1.0])
     assert np.isnan(flat.accuracy_95) and np.isnan(flat.ce90) and flat.axis_ratio < 0.6
+
+
+# -- ASPRS Edition 2 (2023) -----------------------------------------------------------------------
+
+# Edition 2's worked table of vertical product accuracy (its Table 7.4, "computing vertical product
+# accuracy"): the RMSE_V1 measured against checkpoints surveyed to RMSE_V2 = 2.0 cm, and the
+# product's RMSE_V it prints, in cm. The standard itself could not be read on this machine (no
+# internet); the rows are those of a public transcription, and each is sqrt(RMSE_V1² + 2.0²) to
+# the table's 0.01 cm, which this test would catch if rsgeo combined them any other way (a plain
+# sum gives 3.00 for the first row, Edition 1's 95 % figure 1.96 RMSE_V1 gives 1.96).
+TABLE_7_4 = [(1.00, 2.24), (1.50, 2.50), (2.00, 2.83), (2.50, 3.20), (3.00, 3.61), (3.50, 4.03),
+             (4.00, 4.47), (4.50, 4.92), (5.00, 5.39), (5.50, 5.85), (6.00, 6.32), (6.50, 6.80),
+             (7.00, 7.28), (7.50, 7.76), (8.00, 8.25), (8.50, 8.73), (9.00, 9.22), (9.50, 9.71),
+             (10.00, 10.20)]
+
+
+@pytest.mark.parametrize("fit, product", TABLE_7_4)
+def test_edition2_vertical_accuracy_is_its_worked_table(fit, product):
+    dz = np.tile([fit, -fit], 15)                  # 30 checkpoints whose RMSE is `fit` exactly
+    result = accuracy.asprs_vertical_2023(dz, checkpoint_rmse_v=2.0)
+    assert result.rmse_v1 == pytest.approx(fit, rel=1e-12) and result.checkpoint_rmse_v == 2.0
+    assert abs(result.rmse_v - product) <= 0.005, (fit, result.rmse_v, product)
+    assert result.n_points == 30 and result.enough_checkpoints
+
+
+def test_edition2_horizontal_adds_the_checkpoints_survey_in_quadrature():
+    # by hand: errors of (±3, ±4) m give RMSE_x 3, RMSE_y 4 and RMSE_H1 5; checkpoints surveyed
+    # to RMSE_H2 12 m make the product's RMSE_H sqrt(5² + 12²) = 13 m
+    errors = np.array([[3, 4], [-3, -4], [3, -4], [-3, 4]] * 8, dtype=float)[:30]
+    exact = accuracy.asprs_horizontal_2023(errors)
+    assert (exact.rmse_x, exact.rmse_y, exact.rmse_h1, exact.rmse_h) == (3.0, 4.0, 5.0, 5.0)
+    assert exact.checkpoint_rmse_h == 0.0          # the default: checkpoints taken as exact
+    surveyed = accuracy.asprs_horizontal_2023(errors, checkpoint_rmse_h=12.0)
+    assert surveyed.rmse_h1 == 5.0 and surveyed.rmse_h == 13.0
+    # Edition 1's RMSE_r is what Edition 2 calls RMSE_H1; the 95 % figures are gone
+    assert exact.rmse_h1 == accuracy.asprs_horizontal(errors).rmse_r
+    assert not hasattr(exact, "accuracy_95") and not hasattr(exact, "ce90")
+    assert accuracy.asprs_vertical_2023(errors[:, 1]).rmse_v == 4.0
+
+
+def test_edition2_never_states_a_product_better_than_its_checkpoints():
+    rng = np.random.default_rng(21)
+    for _ in range(50):
+        errors = rng.normal(0, rng.uniform(0.1, 30), (int(rng.integers(1, 60)), 2))
+        survey = float(rng.uniform(0, 20))
+        result = accuracy.asprs_horizontal_2023(errors, checkpoint_rmse_h=survey)
+        assert result.rmse_h >= max(result.rmse_h1, survey)
+        assert result.rmse_h == pytest.approx(np.sqrt(np.mean(np.sum(errors**2, axis=1))
+                                                      + survey**2), rel=1e-12)
+        assert result.enough_checkpoints == (len(errors) >= 30)
+
+
+def test_edition2_classes_need_30_checkpoints_twice_as_accurate_as_the_class():
+    errors = np.array([[3, 4], [-3, -4], [3, -4], [-3, 4]] * 8, dtype=float)[:30]
+    result = accuracy.asprs_horizontal_2023(errors, checkpoint_rmse_h=2.0)   # RMSE_H sqrt(29)
+    assert accuracy.ASPRS_MIN_CHECKPOINTS == 30 and accuracy.ASPRS_CHECKPOINT_RATIO == 2
+    assert result.meets(np.sqrt(29.0)) and result.meets(5.4) and not result.meets(5.3)
+    assert result.meets(4.0) is False              # 2 m checkpoints may test a 4 m class
+    with pytest.raises(GCPError, match=r"at least 2 times more accurate .*at most 1\.5\)"):
+        result.meets(3.0)                          # ... not a 3 m one
+    # with 29 checkpoints the figure is given, flagged, and no class is stated
+    few = accuracy.asprs_horizontal_2023(errors[:29])
+    assert few.rmse_h == 5.0 and not few.enough_checkpoints
+    with pytest.raises(GCPError, match="needs at least 30 checkpoints, got 29: test on 1 more"):
+        few.meets(100.0)
+    heights = accuracy.asprs_vertical_2023(errors[:13, 0], checkpoint_rmse_v=1.0)
+    assert heights.rmse_v == pytest.approx(np.sqrt(10.0)) and not heights.enough_checkpoints
+    with pytest.raises(GCPError, match="got 13: test on 17 more, or report RMSE_V"):
+        heights.meets(10.0)
+    assert accuracy.asprs_vertical_2023(np.tile(errors[:, 0], 2)).meets(3.0)
+
+
+@pytest.mark.parametrize("call, error, message", [
+    (lambda: accuracy.asprs_horizontal_2023(np.zeros((0, 2))), GCPError,
+     "no check point.*Edition 2 asks for 30"),
+    (lambda: accuracy.asprs_horizontal_2023([3.0, 4.0]), GCPError, "flat pair"),
+    (lambda: accuracy.asprs_horizontal_2023([1.0, 2.0, 3.0]), GCPError, "both components"),
+    (lambda: accuracy.asprs_horizontal_2023([["1", "2"]]), TypeError, "real numbers"),
+    (lambda: accuracy.asprs_horizontal_2023([[1.0, 2.0]], checkpoint_rmse_h=-1.0), ValueError,
+     "checkpoint_rmse_h must be >= 0"),
+    (lambda: accuracy.asprs_horizontal_2023([[1.0, 2.0]], checkpoint_rmse_h="1"), TypeError,
+     "checkpoint_rmse_h must be a number"),
+    (lambda: accuracy.asprs_horizontal_2023([[1.0, 2.0]], 1.0), TypeError, "positional"),
+    (lambda: accuracy.asprs_vertical_2023([]), GCPError, "non-empty"),
+    (lambda: accuracy.asprs_vertical_2023([1.0, np.nan]), GCPError, "finite"),
+    (lambda: accuracy.asprs_vertical_2023([True, False]), TypeError, "number"),
+    (lambda: accuracy.asprs_vertical_2023([1.0], checkpoint_rmse_v=np.inf), ValueError,
+     "finite"),
+    (lambda: accuracy.asprs_vertical_2023([1.0] * 30).meets(0.0), ValueError, "positive"),
+    (lambda: accuracy.asprs_vertical_2023([1.0] * 30).meets("5 cm"), TypeError, "number"),
+    # Edition 1's function refuses an empty set too, instead of answering NaN
+    (lambda: accuracy.asprs_horizontal(np.zeros((0, 2))), GCPError, "no check point"),
+])
+def test_edition2_refuses_what_it_cannot_judge(call, error, message):
+    with pytest.raises(error, match=message):
+        call()

@@ -12,7 +12,9 @@ GDAL's case) or a kind's name (``refine_gcps(src, dst, "helmert", tolerance)``),
   predicted error between them;
 - one table of every model (chapter 3b) and comparisons with an image's own geotransform;
 - accuracy standards (chapter 3): the class of the Brazilian PEC-PCD a set of check-point errors
-  meets at a map scale, ASPRS 2014's RMSE_x, RMSE_y, RMSE_r and 95 % accuracy, CE90 and LE90.
+  meets at a map scale; ASPRS Edition 2's (2023) RMSE_H and RMSE_V, the checkpoints' own accuracy
+  included, and its accuracy classes (30 checkpoints at least); ASPRS 2014's RMSE_r and 95 %
+  accuracy as history; CE90 and LE90.
 """
 
 from ._residuals import (
@@ -32,6 +34,8 @@ from ._residuals import (
     rms_error,
 )
 from ._standards import (
+    ASPRS_CHECKPOINT_RATIO,
+    ASPRS_MIN_CHECKPOINTS,
     CE90_FACTOR,
     CE90_RADIAL_FACTOR,
     LE90_FACTOR,
@@ -41,20 +45,27 @@ from ._standards import (
     PEC_CLASSES,
     VERTICAL_95_FACTOR,
     HorizontalAccuracy,
+    HorizontalAccuracy2023,
     PECResult,
     VerticalAccuracy,
+    VerticalAccuracy2023,
     asprs_horizontal,
+    asprs_horizontal_2023,
     asprs_vertical,
+    asprs_vertical_2023,
     classify,
     largest_scale,
     pec_thresholds,
 )
 
 __all__ = [
+    "ASPRS_CHECKPOINT_RATIO",
+    "ASPRS_MIN_CHECKPOINTS",
     "CE90_FACTOR",
     "CE90_RADIAL_FACTOR",
     "GeotransformCheck",
     "HorizontalAccuracy",
+    "HorizontalAccuracy2023",
     "LE90_FACTOR",
     "MAP_SCALES",
     "NSSDA_95_FACTOR",
@@ -63,8 +74,11 @@ __all__ = [
     "PEC_CLASSES",
     "VERTICAL_95_FACTOR",
     "VerticalAccuracy",
+    "VerticalAccuracy2023",
     "asprs_horizontal",
+    "asprs_horizontal_2023",
     "asprs_vertical",
+    "asprs_vertical_2023",
     "classify",
     "coefficient_standard_errors",
     "compare_models",

@@ -1,20 +1,23 @@
-"""Accuracy standards: the Brazilian PEC-PCD's classes at a map scale, ASPRS's horizontal and
-vertical accuracy, CE90 and LE90.
+"""Accuracy standards: the Brazilian PEC-PCD's classes at a map scale; ASPRS's horizontal and
+vertical accuracy, by Edition 2 (2023, the current one) and by Edition 1 (2014) and the NSSDA as
+history; CE90 and LE90.
 """
 
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import GCPError
-from ..language import N_, _
+from ..errors import GCPError, RsgeoError
+from ..language import N_, _, prose_number
 from ..validation import as_finite, as_number, as_points, check_choice
 
 __all__ = [
     "MAP_SCALES", "PEC_CLASSES", "LE90_FACTOR", "VERTICAL_95_FACTOR", "CE90_FACTOR",
     "CE90_RADIAL_FACTOR", "NSSDA_95_FACTOR", "NSSDA_95_RADIAL_FACTOR", "pec_thresholds",
     "PECResult", "classify", "largest_scale", "HorizontalAccuracy", "asprs_horizontal",
-    "VerticalAccuracy", "asprs_vertical",
+    "VerticalAccuracy", "asprs_vertical", "ASPRS_MIN_CHECKPOINTS", "ASPRS_CHECKPOINT_RATIO",
+    "HorizontalAccuracy2023", "asprs_horizontal_2023", "VerticalAccuracy2023",
+    "asprs_vertical_2023",
 ]
 
 # --- Accuracy standards --------------------------------------------------------------------------
@@ -48,6 +51,12 @@ CE90_RADIAL_FACTOR = 1.5175
 NSSDA_95_FACTOR = 2.4477
 #: The same in terms of RMSE_r: 2.4477 / sqrt(2).
 NSSDA_95_RADIAL_FACTOR = 1.7308
+#: ASPRS Edition 2 (2023): the fewest checkpoints a product's accuracy may be tested on (Edition 1
+#: and the NSSDA asked for 20).
+ASPRS_MIN_CHECKPOINTS = 30
+#: ASPRS Edition 2 (2023): checkpoints at least this many times more accurate than the accuracy
+#: class they test (Edition 1 asked three times for checkpoints).
+ASPRS_CHECKPOINT_RATIO = 2
 
 
 def _as_scale(scale):
@@ -85,8 +94,28 @@ def _check_point_distances(errors):
             raise GCPError(_("errors given as distances must be finite and not negative"))
     if len(distances) == 0:
         raise GCPError(_("errors holds no check point; the standards need at least one "
-                         "(ASPRS and NSSDA ask for 20)"))
+                         "(ASPRS Edition 2 asks for {asprs}, the NSSDA for 20)").format(
+                             asprs=ASPRS_MIN_CHECKPOINTS))
     return distances
+
+
+def _check_point_vectors(errors):
+    """Check-point discrepancies as an (n, 2) float array of (dx, dy), n >= 1."""
+    if np.ndim(errors) == 1 and np.size(errors) != 2:
+        raise GCPError(_("errors must be (n, 2) discrepancies (dx, dy): RMSE_x and RMSE_y need "
+                         "both components, got {size} distances").format(size=np.size(errors)))
+    if np.ndim(errors) == 1:
+        # [3, 4] is one check point's (dx, dy) or two checks' distances: refused, not guessed
+        raise GCPError(_("errors must be an (n, 2) array of (dx, dy), one row per check point; "
+                         "a flat pair {errors!r} could be one point or two distances: give "
+                         "[[dx, dy]] for one check point").format(errors=np.asarray(errors)
+                                                                    .tolist()))
+    vectors = as_points(errors, "errors")
+    if len(vectors) == 0:
+        raise GCPError(_("errors holds no check point; the standards need at least one "
+                         "(ASPRS Edition 2 asks for {asprs}, the NSSDA for 20)").format(
+                             asprs=ASPRS_MIN_CHECKPOINTS))
+    return vectors
 
 
 def _ninety_percent_error(distances):
@@ -159,7 +188,7 @@ class PECResult:
     rms : float
         RMS of the errors' lengths, sqrt(Σ d_i² / n), metres: the standard
         error (EP) the decree takes as equivalent to the RMS error, and ASPRS's
-        RMSE_r.
+        RMSE_r (Edition 1) or RMSE_H1 (Edition 2).
     percentile_90 : float
         The smallest error that at least 90 % of the check points do not
         exceed, metres: a class's 90 % test passes when it is <= the PEC.
@@ -224,9 +253,10 @@ def classify(errors, scale, standard="PEC-PCD"):
     error - the RMS of the errors, which the decree takes as equivalent - is
     at most its EP. The errors must come from check points (well-defined
     points measured independently, of higher accuracy, not used in the fit):
-    the residuals of the GCPs a model was fitted to flatter it. ASPRS and the
-    NSSDA ask for at least 20 check points; with fewer the 90 % test lets
-    fewer errors through (with 13, one may exceed the PEC).
+    the residuals of the GCPs a model was fitted to flatter it. ASPRS's
+    Edition 2 asks for at least 30 check points (Edition 1 and the NSSDA for
+    20); with fewer the 90 % test lets fewer errors through (with 13, one may
+    exceed the PEC).
 
     Parameters
     ----------
@@ -348,7 +378,9 @@ def largest_scale(errors, standard="PEC-PCD", scales=MAP_SCALES):
 
 @dataclass
 class HorizontalAccuracy:
-    """Horizontal accuracy of check points as ASPRS 2014 and the NSSDA report it.
+    """Horizontal accuracy of check points as ASPRS Edition 1 (2014) and the NSSDA report it.
+
+    Edition 2 (2023) replaced these figures: see :class:`HorizontalAccuracy2023`.
 
     Attributes
     ----------
@@ -381,9 +413,13 @@ class HorizontalAccuracy:
 def asprs_horizontal(errors):
     """RMSE_x, RMSE_y, RMSE_r, the 95 % horizontal accuracy and CE90 of check-point errors.
 
-    The formulas assume normally distributed errors with no systematic part;
-    ``accuracy_95`` and ``ce90`` are RMS errors times a constant, not counts of
-    the errors (compare :attr:`PECResult.percentile_90`, which counts).
+    The figures of ASPRS's Edition 1 (2014) and the NSSDA (1998), kept as
+    history and for CE90: ASPRS's Edition 2 (2023) reports accuracy as an RMS
+    error alone, with the checkpoints' own accuracy added, on at least 30
+    checkpoints (:func:`asprs_horizontal_2023`). The formulas assume normally
+    distributed errors with no systematic part; ``accuracy_95`` and ``ce90``
+    are RMS errors times a constant, not counts of the errors (compare
+    :attr:`PECResult.percentile_90`, which counts).
 
     Parameters
     ----------
@@ -398,7 +434,7 @@ def asprs_horizontal(errors):
     Raises
     ------
     GCPError
-        If ``errors`` is not (n, 2) finite numbers (distances alone cannot give
+        If ``errors`` is empty or not (n, 2) finite numbers (distances alone cannot give
         RMSE_x and RMSE_y); a flat pair such as ``[3, 4]`` is refused too, being
         either one check point or two distances (give ``[[3, 4]]`` for one point).
 
@@ -417,16 +453,7 @@ def asprs_horizontal(errors):
     >>> round(result.rmse_r, 4), round(result.accuracy_95, 2), round(result.ce90, 2)
     (5.0, 8.65, 7.59)
     """
-    if np.ndim(errors) == 1 and np.size(errors) != 2:
-        raise GCPError(_("errors must be (n, 2) discrepancies (dx, dy): RMSE_x and RMSE_y need "
-                         "both components, got {size} distances").format(size=np.size(errors)))
-    if np.ndim(errors) == 1:
-        # [3, 4] is one check point's (dx, dy) or two checks' distances: refused, not guessed
-        raise GCPError(_("errors must be an (n, 2) array of (dx, dy), one row per check point; "
-                         "a flat pair {errors!r} could be one point or two distances: give "
-                         "[[dx, dy]] for one check point").format(errors=np.asarray(errors)
-                                                                    .tolist()))
-    vectors = as_points(errors, "errors")
+    vectors = _check_point_vectors(errors)
     rmse_x, rmse_y = np.sqrt(np.mean(vectors**2, axis=0))
     rmse_r = float(np.hypot(rmse_x, rmse_y))
     larger, smaller = max(rmse_x, rmse_y), min(rmse_x, rmse_y)
@@ -442,7 +469,7 @@ def asprs_horizontal(errors):
 
 @dataclass
 class VerticalAccuracy:
-    """Vertical accuracy of check points (:func:`asprs_vertical`).
+    """Vertical accuracy of check points by ASPRS Edition 1 (2014) (:func:`asprs_vertical`).
 
     Attributes
     ----------
@@ -463,6 +490,9 @@ class VerticalAccuracy:
 
 def asprs_vertical(dz):
     """RMSE_z, LE90 and the 95 % vertical accuracy of check-point height errors.
+
+    The figures of ASPRS's Edition 1 (2014) and the NSSDA, kept as history and
+    for LE90; Edition 2 (2023) reports RMSE_V alone (:func:`asprs_vertical_2023`).
 
     Parameters
     ----------
@@ -498,3 +528,286 @@ def asprs_vertical(dz):
     return VerticalAccuracy(len(heights), rmse_z, LE90_FACTOR * rmse_z,
                             VERTICAL_95_FACTOR * rmse_z)
 
+
+
+# --- ASPRS Edition 2 (2023) ----------------------------------------------------------------------
+
+def _as_survey_rmse(value, name):
+    return as_number(value, name, low=0, why=N_(
+        "the checkpoints' own survey accuracy as an RMSE, in the errors' units; 0 takes them "
+        "as exact"))
+
+
+def _edition2_class(n_points, checkpoint_rmse, accuracy_class, symbol):
+    """The class as a number, once an Edition 2 statement about it may be made at all."""
+    accuracy_class = as_number(accuracy_class, "accuracy_class")
+    if accuracy_class <= 0:
+        raise RsgeoError(_("accuracy_class must be a positive RMSE in the errors' units (25 for "
+                           "a 25 m class when the errors are in metres), got {value!r}").format(
+                               value=accuracy_class))
+    if n_points < ASPRS_MIN_CHECKPOINTS:
+        raise GCPError(_("an ASPRS Edition 2 accuracy class needs at least {minimum} "
+                         "checkpoints, got {n}: test on {more} more, or report {symbol} as an "
+                         "estimate without claiming a class").format(
+                             minimum=ASPRS_MIN_CHECKPOINTS, n=n_points,
+                             more=ASPRS_MIN_CHECKPOINTS - n_points, symbol=symbol))
+    limit = accuracy_class / ASPRS_CHECKPOINT_RATIO
+    if checkpoint_rmse > limit:
+        raise GCPError(_("checkpoints surveyed to {symbol} {survey:g} cannot test a class of "
+                         "{accuracy_class:g}: ASPRS Edition 2 asks for checkpoints at least "
+                         "{ratio} times more accurate than the class they test ({symbol} at "
+                         "most {limit:g})").format(
+                             symbol=symbol, survey=prose_number(checkpoint_rmse),
+                             accuracy_class=prose_number(accuracy_class),
+                             ratio=ASPRS_CHECKPOINT_RATIO, limit=prose_number(limit)))
+    return accuracy_class
+
+
+@dataclass
+class HorizontalAccuracy2023:
+    """Horizontal accuracy by ASPRS Edition 2 (:func:`asprs_horizontal_2023`).
+
+    Attributes
+    ----------
+    n_points : int
+        Number of checkpoints.
+    rmse_x, rmse_y : float
+        RMS of the discrepancies along x (east) and y (north).
+    rmse_h1 : float
+        sqrt(RMSE_x² + RMSE_y²): the product tested against the checkpoints
+        (Edition 1's RMSE_r).
+    checkpoint_rmse_h : float
+        RMSE_H2, the checkpoints' own horizontal accuracy as surveyed (0: taken
+        as exact).
+    rmse_h : float
+        The product's horizontal accuracy, sqrt(RMSE_H1² + RMSE_H2²).
+    enough_checkpoints : bool
+        Whether there are at least ``ASPRS_MIN_CHECKPOINTS`` (30), so that
+        ``rmse_h`` may be stated as Edition 2 accuracy; with fewer it is an
+        estimate, and :meth:`meets` refuses.
+    """
+
+    n_points: int
+    rmse_x: float
+    rmse_y: float
+    rmse_h1: float
+    checkpoint_rmse_h: float
+    rmse_h: float
+    enough_checkpoints: bool
+
+    def meets(self, accuracy_class):
+        """Whether the product meets a horizontal accuracy class: RMSE_H <= the class.
+
+        Edition 2 names a class by its RMSE_H, "horizontal accuracy class
+        X cm" for RMSE_H <= X, with no map scale attached.
+
+        Parameters
+        ----------
+        accuracy_class : float
+            The class's RMSE_H, in the errors' units (25 for a 25 m class
+            when the errors are in metres).
+
+        Returns
+        -------
+        bool
+            ``rmse_h <= accuracy_class``.
+
+        Raises
+        ------
+        GCPError
+            With fewer than 30 checkpoints (it says how many there are), or
+            checkpoints surveyed less than two times more accurately than the
+            class (``checkpoint_rmse_h > accuracy_class / 2``).
+        rsgeo.errors.RsgeoError
+            If ``accuracy_class`` is not a positive number.
+        TypeError
+            If ``accuracy_class`` is not a number.
+        """
+        accuracy_class = _edition2_class(self.n_points, self.checkpoint_rmse_h,
+                                         accuracy_class, "RMSE_H")
+        return bool(self.rmse_h <= accuracy_class)
+
+
+def asprs_horizontal_2023(errors, *, checkpoint_rmse_h=0.0):
+    """Horizontal accuracy of check-point errors by ASPRS Edition 2 (2023): RMSE_H.
+
+    Edition 2 states accuracy as an RMS error alone (Edition 1's and the
+    NSSDA's 95 % figures are gone), and it counts the checkpoints' own error:
+    the product's RMSE_H1, measured against the checkpoints, is combined with
+    RMSE_H2, the accuracy of the checkpoints' survey, as
+    RMSE_H = sqrt(RMSE_H1² + RMSE_H2²). So a product is never stated more
+    accurate than the checkpoints that tested it.
+
+    Computed for any number of checkpoints, so that a small test (a course's
+    leave-one-out GCPs) still shows its figure; ``enough_checkpoints`` says
+    whether Edition 2's minimum of 30 is met, and
+    :meth:`HorizontalAccuracy2023.meets` refuses a class below it.
+
+    Parameters
+    ----------
+    errors : (n, 2) array_like
+        Check-point discrepancies (dx, dy), product minus reference, in map
+        units.
+    checkpoint_rmse_h : float, keyword-only
+        RMSE_H2, the checkpoints' horizontal accuracy from their survey
+        (radial, like RMSE_H: sqrt(2) σ for a survey of σ per axis), in the
+        units of ``errors``. Default 0: the checkpoints are assumed exact.
+
+    Returns
+    -------
+    HorizontalAccuracy2023
+
+    Raises
+    ------
+    GCPError
+        If ``errors`` is empty or not (n, 2) finite numbers (a flat pair such
+        as ``[3, 4]`` is refused too, as by :func:`asprs_horizontal`).
+    rsgeo.errors.RsgeoError
+        If ``checkpoint_rmse_h`` is negative or not finite.
+    TypeError
+        If ``errors`` holds text, booleans or complex numbers, or
+        ``checkpoint_rmse_h`` is not a number.
+
+    References
+    ----------
+    ASPRS, *ASPRS Positional Accuracy Standards for Digital Geospatial Data*,
+    Edition 2, Version 1.0, August 2023 (Version 2.0, June 2024, adds
+    best-practice addenda), American Society for Photogrammetry and Remote
+    Sensing. Q. Abdullah, "The ASPRS Positional Accuracy Standards, Edition 2:
+    the geospatial mapping industry guide to best practices", Photogrammetric
+    Engineering & Remote Sensing 89(10): 581-588, 2023,
+    doi:10.14358/PERS.89.10.581.
+
+    Examples
+    --------
+    Thirty checkpoints off by (±3, ±4) m, surveyed to RMSE_H2 = 12 m:
+
+    >>> errors = [[3, 4], [-3, -4], [3, -4]] * 10
+    >>> result = asprs_horizontal_2023(errors, checkpoint_rmse_h=12)
+    >>> result.rmse_h1, result.rmse_h, result.enough_checkpoints
+    (5.0, 13.0, True)
+    >>> result.meets(25)          # 12 m checkpoints can test classes from 24 m
+    True
+    >>> result.meets(20)          # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    rsgeo.errors.GCPError: checkpoints surveyed to RMSE_H 12 cannot test a class of 20: ...
+    """
+    vectors = _check_point_vectors(errors)
+    survey = _as_survey_rmse(checkpoint_rmse_h, "checkpoint_rmse_h")
+    rmse_x, rmse_y = (float(value) for value in np.sqrt(np.mean(vectors**2, axis=0)))
+    rmse_h1 = float(np.hypot(rmse_x, rmse_y))
+    return HorizontalAccuracy2023(len(vectors), rmse_x, rmse_y, rmse_h1, survey,
+                                  float(np.hypot(rmse_h1, survey)),
+                                  len(vectors) >= ASPRS_MIN_CHECKPOINTS)
+
+
+@dataclass
+class VerticalAccuracy2023:
+    """Vertical accuracy by ASPRS Edition 2 (:func:`asprs_vertical_2023`).
+
+    Attributes
+    ----------
+    n_points : int
+        Number of checkpoints.
+    rmse_v1 : float
+        RMS of the height discrepancies: the product tested against the
+        checkpoints (Edition 1's RMSE_z).
+    checkpoint_rmse_v : float
+        RMSE_V2, the checkpoints' own vertical accuracy as surveyed (0: taken as
+        exact).
+    rmse_v : float
+        The product's vertical accuracy, sqrt(RMSE_V1² + RMSE_V2²).
+    enough_checkpoints : bool
+        Whether there are at least ``ASPRS_MIN_CHECKPOINTS`` (30).
+    """
+
+    n_points: int
+    rmse_v1: float
+    checkpoint_rmse_v: float
+    rmse_v: float
+    enough_checkpoints: bool
+
+    def meets(self, accuracy_class):
+        """Whether the product meets a vertical accuracy class: RMSE_V <= the class.
+
+        Parameters
+        ----------
+        accuracy_class : float
+            The class's RMSE_V, in the units of the height errors.
+
+        Returns
+        -------
+        bool
+            ``rmse_v <= accuracy_class``.
+
+        Raises
+        ------
+        GCPError
+            With fewer than 30 checkpoints, or checkpoints surveyed less than
+            two times more accurately than the class.
+        rsgeo.errors.RsgeoError
+            If ``accuracy_class`` is not a positive number.
+        TypeError
+            If ``accuracy_class`` is not a number.
+        """
+        accuracy_class = _edition2_class(self.n_points, self.checkpoint_rmse_v,
+                                         accuracy_class, "RMSE_V")
+        return bool(self.rmse_v <= accuracy_class)
+
+
+def asprs_vertical_2023(dz, *, checkpoint_rmse_v=0.0):
+    """Vertical accuracy of check-point height errors by ASPRS Edition 2 (2023): RMSE_V.
+
+    RMSE_V = sqrt(RMSE_V1² + RMSE_V2²): RMSE_V1 measured against the
+    checkpoints, RMSE_V2 the accuracy of their survey. No 95 % figure, and no
+    LE90 (:func:`asprs_vertical` keeps those).
+
+    Parameters
+    ----------
+    dz : (n,) array_like
+        Height discrepancies, product minus reference.
+    checkpoint_rmse_v : float, keyword-only
+        RMSE_V2, the checkpoints' vertical accuracy from their survey, in the
+        units of ``dz``. Default 0: the checkpoints are assumed exact.
+
+    Returns
+    -------
+    VerticalAccuracy2023
+
+    Raises
+    ------
+    GCPError
+        If ``dz`` is empty, not one-dimensional, or holds NaN or infinity.
+    rsgeo.errors.RsgeoError
+        If ``checkpoint_rmse_v`` is negative or not finite.
+    TypeError
+        If ``dz`` holds text, booleans or complex numbers, or
+        ``checkpoint_rmse_v`` is not a number.
+
+    References
+    ----------
+    ASPRS, *ASPRS Positional Accuracy Standards for Digital Geospatial Data*,
+    Edition 2, Version 1.0, August 2023 (Version 2.0, June 2024, adds
+    best-practice addenda), American Society for Photogrammetry and Remote
+    Sensing. Q. Abdullah, "The ASPRS Positional Accuracy Standards, Edition 2:
+    the geospatial mapping industry guide to best practices", Photogrammetric
+    Engineering & Remote Sensing 89(10): 581-588, 2023,
+    doi:10.14358/PERS.89.10.581.
+
+    Examples
+    --------
+    A surface 1.5 cm off at 30 checkpoints surveyed to 2 cm is a 2.5 cm product:
+
+    >>> result = asprs_vertical_2023([1.5, -1.5] * 15, checkpoint_rmse_v=2.0)
+    >>> result.rmse_v1, result.rmse_v, result.meets(5.0)
+    (1.5, 2.5, True)
+    """
+    heights = as_finite(dz, "dz", error=GCPError)
+    if heights.ndim != 1 or len(heights) == 0:
+        raise GCPError(_("dz must be a non-empty (n,) array of finite height errors, got shape "
+                         "{shape}").format(shape=heights.shape))
+    survey = _as_survey_rmse(checkpoint_rmse_v, "checkpoint_rmse_v")
+    rmse_v1 = float(np.sqrt(np.mean(heights**2)))
+    return VerticalAccuracy2023(len(heights), rmse_v1, survey, float(np.hypot(rmse_v1, survey)),
+                                len(heights) >= ASPRS_MIN_CHECKPOINTS)
