@@ -47,13 +47,13 @@ exact transformer (``-et 0``), whose two geotransforms :func:`warp` applies
 in GDAL's order; and the same kernel scale: the XSCALE/YSCALE given, or
 gdalwarp's for the whole output grid. Two gdalwarp defaults differ: its
 approximate transformer (``-et 0.125``, which ``rasterio.warp.reproject`` uses
-between two grids; with RPCs and ``RPC_DEM`` it uses GDAL's exact transformer
-and ignores ``tolerance``) moves positions in their last bits, or by up to
-0.125 pixel for non-linear mappings, which rounds some exact .5 ties of an
-enlargement the other way; and it computes the scale per chunk of the output,
-from the bounding box of each chunk's source window, which on a rotated source
-falls below 0.95 (1 / (cos θ + sin θ) for a square chunk) and widens the
-kernels where rsgeo's one scale does not.
+between two grids; rasterio 1.4 has no ``tolerance`` argument; with RPCs and
+``RPC_DEM`` GDAL's transformer is exact) moves positions in their last bits,
+or by up to 0.125 pixel for non-linear mappings, which rounds some exact .5
+ties of an enlargement the other way; and it computes the scale per chunk of
+the output, from the bounding box of each chunk's source window, which on a
+rotated source falls below 0.95 (1 / (cos θ + sin θ) for a square chunk) and
+widens the kernels where rsgeo's one scale does not.
 
 :func:`warp` refuses the two classic silent mistakes: a mapping in the wrong
 direction (image -> map, e.g. a raster's own geotransform instead of its
