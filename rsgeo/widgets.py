@@ -583,8 +583,16 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     affine map) drawn ``exaggeration`` times larger: straight for linear,
     Helmert and degree 1, bent for the others. The arrows are the GCPs'
     residuals (model - measured), as long times the same factor; the title
-    gives the fitting and leave-one-out RMS. Every model and its leave-one-out
+    gives the fitting and leave-one-out RMS, those of
+    :func:`rsgeo.accuracy.compare_models`. Every model and its leave-one-out
     errors are computed once, when the widget is built.
+
+    Every model maps map -> image. The thin-plate spline is GDAL's, as
+    ``gdalwarp -tps`` and QGIS's Georeferencer make it (and
+    :func:`rsgeo.resample.georeference` warps with it): fitted image -> map
+    and inverted point by point (:meth:`rsgeo.transforms.TPSModel.inverse`),
+    not a spline fitted map -> image, which passes through the same GCPs but
+    bends differently between them.
 
     Parameters
     ----------
@@ -604,7 +612,8 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     ------
     ValueError
         If ``model`` is not one of the labels, ``exaggeration`` is not in
-        [1, 50], or there are too few GCPs for one of the models.
+        [1, 50], or there are too few GCPs for one of the models' leave-one-out
+        errors (one more than its minimum).
     """
     import ipywidgets as widgets
 
@@ -624,13 +633,26 @@ def model_explorer(gcps, model="polynomial 1", exaggeration=20.0):
     points = np.vstack(lines)
     affine = transforms.fit_transform(map_xy, image_xy, "polynomial", 1)
     base = affine(points)
+    table = accuracy.compare_models(map_xy, image_xy)
+    short = table.index[table["leave-one-out RMS (px)"].isna()]
+    if len(short):
+        raise GCPError(_("the model explorer shows every model's leave-one-out RMS, which needs "
+                         "one GCP more than the model's minimum: {models} need(s) at least "
+                         "{needed} enabled GCPs, got {count}").format(
+                             models=", ".join(short),
+                             needed=int(table.loc[short, "min GCPs"].max()) + 1,
+                             count=len(map_xy)))
     fitted = {}
     for label, kind, order in transforms.GEOREFERENCER_MODELS:
-        fitted_model = transforms.fit_transform(map_xy, image_xy, kind, order)
-        loo = accuracy.leave_one_out_errors(map_xy, image_xy, order, kind)
-        fitted[label] = (fitted_model.n_parameters, fitted_model(points) - base,
-                         fitted_model(map_xy) - image_xy,
-                         fitted_model.rms(map_xy, image_xy), float(np.sqrt(np.mean(loo**2))))
+        if kind == "tps":
+            # GDAL's spline (gdalwarp -tps, QGIS): fitted image -> map, inverted as GDAL does
+            fitted_model = transforms.fit_transform(image_xy, map_xy, "tps").inverse()
+        else:
+            fitted_model = transforms.fit_transform(map_xy, image_xy, kind, order)
+        row = table.loc[label]
+        fitted[label] = (int(row["parameters"]), fitted_model(points) - base,
+                         fitted_model(map_xy) - image_xy, float(row["fitting RMS (px)"]),
+                         float(row["leave-one-out RMS (px)"]))
 
     choice = widgets.Dropdown(options=labels, value=model, description=_("model"))
     factor = widgets.FloatSlider(value=exaggeration, min=1, max=50, step=1,

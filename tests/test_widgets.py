@@ -132,6 +132,43 @@ def test_gcp_explorer_updates_its_bars_and_rms():
         widgets.gcp_explorer(gcps, order=4)
 
 
+@pytest.mark.gdal
+def test_model_explorer_draws_gdals_thin_plate_spline():
+    # the spline gdalwarp -tps and QGIS use: fitted pixel -> map, inverted from map to pixel by
+    # GDAL's TPS transformer (GDAL 3.10 through rasterio); with G10, where a spline fitted
+    # map -> image is more than half a pixel away from it
+    from gdal_tps_reference import gdal_spline_inverse
+
+    gcps = data.load_gcps("cbers2b_ccd_hrc")
+    box = widgets.model_explorer(gcps, model="tps", exaggeration=1)
+    (ax,) = box.figure.axes
+    drawn = np.asarray(ax.lines[0].get_xydata())
+    drawn = drawn[~np.isnan(drawn).any(axis=1)]
+    # the widget's grid: 9 lines each way, 41 points each, 5 % beyond the GCPs
+    low, high = gcps.map_xy.min(axis=0), gcps.map_xy.max(axis=0)
+    margin = 0.05 * (high - low)
+    xs = np.linspace(low[0] - margin[0], high[0] + margin[0], 9)
+    ys = np.linspace(low[1] - margin[1], high[1] + margin[1], 9)
+    fine_x, fine_y = np.linspace(xs[0], xs[-1], 41), np.linspace(ys[0], ys[-1], 41)
+    points = np.vstack([np.column_stack([np.full(41, x), fine_y]) for x in xs]
+                       + [np.column_stack([fine_x, np.full(41, y)]) for y in ys])
+    expected = gdal_spline_inverse(gcps.image_xy, gcps.map_xy, points)
+    assert np.abs(drawn - expected).max() < 1e-9
+    direct = transforms.fit_transform(gcps.map_xy, gcps.image_xy, "tps")(points)
+    assert np.abs(drawn - direct).max() > 0.5                 # not the spline map -> image
+    # the title's numbers are compare_models' (GDAL's spline, leave-one-out refitted by it)
+    row = accuracy.compare_models(gcps.map_xy, gcps.image_xy).loc["tps"]
+    assert (f"leave-one-out RMS {row['leave-one-out RMS (px)']:.2f} px" in ax.get_title())
+    assert "tps (34 parameters)" in ax.get_title()
+
+
+def test_model_explorer_refuses_too_few_gcps_for_leave_one_out():
+    gcps = data.load_gcps("cbers2b_ccd_hrc")
+    gcps.enabled = np.arange(len(gcps)) < 10            # degree 3's minimum: none left out
+    with pytest.raises(ValueError, match="polynomial 3 need.* at least 11 enabled GCPs, got 10"):
+        widgets.model_explorer(gcps)
+
+
 def test_regression_stretch_updates_in_place_with_the_chosen_fit():
     pair = synthetic.contrast_pair()
     box = widgets.regression_stretch(pair.x_image, pair.y_image)

@@ -250,8 +250,9 @@ def leave_one_out_residuals(src, dst, order, kind=None):
     return _left_out_differences(src, dst, order, kind, "leave_one_out_residuals")
 
 
-def _left_out_differences(src, dst, order, kind, caller):
-    """(n, 2): the model fitted without GCP i at GCP i's src, minus GCP i's dst."""
+def _left_out_differences(src, dst, order, kind, caller, fit=None):
+    """(n, 2): the model fitted without GCP i at GCP i's src, minus GCP i's dst; ``fit(src, dst,
+    entry)`` fits it (default: the registry's fit, src -> dst)."""
     src, dst = _pair(src, dst)
     entry = _registered(order, kind, caller)
     needed = entry.min_gcps + 1
@@ -267,7 +268,8 @@ def _left_out_differences(src, dst, order, kind, caller):
     difference = np.empty((len(src), 2))
     for index in range(len(src)):
         others = np.arange(len(src)) != index
-        model = entry.fit(src[others], dst[others])
+        model = (entry.fit(src[others], dst[others]) if fit is None
+                 else fit(src[others], dst[others], entry))
         difference[index] = model(src[index:index + 1])[0] - dst[index]
     return difference
 
@@ -631,16 +633,45 @@ def _propagated_deviation(fit, src, grid, dst=None):
 # --- Every model at once -------------------------------------------------------------------------
 
 
+def _georeferencer_model(map_xy, image_xy, entry):
+    """A registry entry's model map -> image as gdalwarp and QGIS's Georeferencer make it.
+
+    Every kind is fitted map -> image, except the thin-plate spline: GDAL's TPS transformer
+    (which ``gdalwarp -tps`` and QGIS use) fits it image -> map and inverts it point by point,
+    :meth:`~rsgeo.transforms.TPSModel.inverse` (as :func:`rsgeo.resample.georeference` does).
+    """
+    if entry.kind == "tps":
+        return fit_transform(image_xy, map_xy, "tps").inverse()
+    return fit_transform(map_xy, image_xy, entry.kind, entry.order)
+
+
 def compare_models(src, dst, is_check=None, models=GEOREFERENCER_MODELS):
     """One row per model: parameters, minimum GCPs, fitting RMS, leave-one-out RMS, check RMS.
 
     The models are fitted on the GCPs not flagged in ``is_check``; the
     check points are only measured. Leave-one-out runs on the fitting GCPs.
+    Every model maps map -> image and every error is measured there, in
+    pixels: ``model(src) - dst``.
+
+    The thin-plate spline is GDAL's, the one ``gdalwarp -tps`` and QGIS's
+    Georeferencer use: fitted image -> map (dst -> src: pixel/line ->
+    georeferenced x/y, GDAL's TPS transformer with the GCPs as given) and
+    inverted point by point where a map -> image position is needed
+    (:meth:`rsgeo.transforms.TPSModel.inverse`, GDAL's ``GDALTPSTransform``
+    from dst to src: a start from a second spline fitted map -> image,
+    refined by Newton's method on the first; what
+    :func:`rsgeo.resample.georeference` warps with). A spline fitted map ->
+    image directly, ``fit_transform(src, dst, "tps")``, passes through the
+    same GCPs but is another surface between them (on chapter 3b's CBERS
+    GCPs, blunder G10 included, more than half a pixel away), so its
+    leave-one-out and check-point errors are not those of the image
+    gdalwarp or QGIS makes. (Before GDAL 3.8, gdalwarp used that second
+    spline alone as its map -> image mapping.)
 
     Parameters
     ----------
     src, dst : (n, 2) array_like
-        All points (src -> dst).
+        All points: map (x, y) -> image (col, row).
     is_check : (n,) array_like of bool or None
         True for check points (not used to fit). None: no check points.
     models : sequence of (label, kind, order)
@@ -659,6 +690,17 @@ def compare_models(src, dst, is_check=None, models=GEOREFERENCER_MODELS):
     GCPError
         If the points are malformed, ``is_check`` does not hold one flag per
         point, or a model cannot be fitted (too few or degenerate GCPs).
+    ModelError
+        Where the thin-plate spline has no inverse at a GCP left out or a
+        check point (the spline fitted image -> map folds there).
+
+    References
+    ----------
+    GDAL, ``alg/gdal_tps.cpp`` (``GDALCreateTPSTransformer``,
+    ``GDALTPSTransform``); QGIS's Georeferencer, ``QgsGDALGeorefTransform``
+    (its thin-plate spline is GDAL's TPS transformer, pixel -> map) and
+    ``QgsGCPListModel`` (its residuals in pixels are that transformer's map
+    -> pixel inversion).
 
     Examples
     --------
@@ -677,12 +719,14 @@ def compare_models(src, dst, is_check=None, models=GEOREFERENCER_MODELS):
     fit_src, fit_dst = src[~check], dst[~check]
     rows = {}
     for label, kind, order in models:
-        model = fit_transform(fit_src, fit_dst, kind, order)
-        minimum = registered(kind, order).min_gcps
-        row = {"parameters": model.n_parameters, "min GCPs": minimum,
+        entry = registered(kind, order)
+        model = _georeferencer_model(fit_src, fit_dst, entry)
+        fitted = model.inverse() if entry.kind == "tps" else model   # the spline image -> map
+        row = {"parameters": fitted.n_parameters, "min GCPs": entry.min_gcps,
                "fitting RMS (px)": model.rms(fit_src, fit_dst)}
-        if len(fit_src) > minimum:
-            loo = leave_one_out_errors(fit_src, fit_dst, order, kind)
+        if len(fit_src) > entry.min_gcps:
+            loo = np.hypot(*_left_out_differences(fit_src, fit_dst, order, kind,
+                                                  "compare_models", _georeferencer_model).T)
             row["leave-one-out RMS (px)"] = float(np.sqrt(np.mean(loo**2)))
         else:
             row["leave-one-out RMS (px)"] = np.nan
