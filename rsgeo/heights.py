@@ -8,10 +8,15 @@ ellipsoid. The two differ by the geoid undulation N:
 
 N is tens of metres: over the box rsgeo's grid covers (Brazil and its neighbours,
 :func:`geoid_coverage`) EGM96 goes from about -40 m to +50 m, and at Olinda it is -5.5 m.
-IBGE's own geoid model for Brazil is MAPGEO2015, fitted to Brazil's gravity and levelling data;
-it is not in PROJ's grid collection, so rsgeo ships the global EGM96 (the geoid SRTM's heights
-are given on) cut to that box, from Debian's ``proj-data`` (``rsgeo/data/README.md``), and
-uses it through PROJ.
+rsgeo ships the global EGM96 (the geoid SRTM's heights are given on) cut to that box, from
+Debian's ``proj-data`` (``rsgeo/data/README.md``), and uses it through PROJ. It ships no other
+model. EGM2008, the geoid of the Copernicus DEM's heights, is not in Debian's ``proj-data``,
+nor in any PyPI package we found. IBGE's model for Brazil, hgeoHNOR2020 (2021, which replaced
+MAPGEO2015), converts h to the **normal** heights that Brazil's levelling network has published
+since its REALT-2018 readjustment: H_N = h - eta, with eta IBGE's conversion factor, which plays
+the part of the height anomaly (the quasigeoid's height above the ellipsoid). PROJ's database
+(PROJ 9.5) lists no grid of it, and its terms of use were not checked, so EGM96 stands in for
+it; how far the two differ was not measured here.
 
 Examples
 --------
@@ -355,9 +360,9 @@ def check_vertical(vertical, name="vertical", crs=None, crs_name="crs"):
         raise GridError(_(
             "{name} must be one of {known}, got {vertical!r}: RPCs and GNSS take heights above "
             "the WGS 84 ellipsoid; say what the heights are above (SRTM and Copernicus DEMs "
-            "are above a geoid, EGM96 or EGM2008, not the ellipsoid; rsgeo ships EGM96 over "
-            "Brazil)").format(name=name, known=", ".join(repr(v) for v in VERTICAL_DATUMS),
-                              vertical=vertical))
+            "are above a geoid, EGM96 and EGM2008 respectively, not the ellipsoid; rsgeo ships "
+            "EGM96 over Brazil, not EGM2008)").format(
+                name=name, known=", ".join(repr(v) for v in VERTICAL_DATUMS), vertical=vertical))
     stated = None if crs is None else _stated_vertical(crs)
     if stated is not None and stated != vertical:
         raise CRSError(_(

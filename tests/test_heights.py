@@ -92,7 +92,8 @@ def test_to_ellipsoidal_adds_n():
     (lambda: heights.geoid_on_grid(affine.Affine(1, 0, -30, 0, -1, 0), (3, 3)),
      "outside the shipped EGM96 grid"),
     (lambda: heights.to_ellipsoidal([1.0], [-40.0], [-10.0], "orthometric"),
-     "SRTM and Copernicus DEMs are above a geoid"),
+     "SRTM and Copernicus DEMs are above a geoid, EGM96 and EGM2008 respectively.*"
+     "rsgeo ships EGM96 over Brazil, not EGM2008"),
     (lambda: heights.check_vertical(None, "dem_vertical"), "dem_vertical must be one of"),
 ])
 def test_refusals_say_what_is_needed(call, match):
