@@ -172,6 +172,30 @@ def test_resection_with_distortion_and_utm_sized_coordinates():
     np.testing.assert_array_equal(image, given[1])
 
 
+def test_utm_is_not_cartesian_but_a_local_tangent_plane_is():
+    # The truth in a true 3-D frame: a camera 3,000 m above a local tangent plane at Olinda.
+    # Its GCPs given as SIRGAS 2000 / UTM 25S and ellipsoidal heights, resected as if UTM were
+    # Cartesian, put the camera too high by about H (k - 1), UTM's scale factor k stretching
+    # the footprint; resected in the tangent plane, they give the truth back.
+    from pyproj import CRS, Proj, Transformer
+
+    from rsgeo.local_frame import from_local_tangent_plane, to_local_tangent_plane
+
+    crs, origin = "EPSG:31985", (292_500.0, 9_114_000.0, 0.0)
+    truth = ExteriorOrientation(0.0, 0.0, 3000.0, 2.0, -1.5, 30.0)
+    ground, image = gcps(FrameCamera(INTERIOR, truth), 12, seed=2)
+    surveyed = from_local_tangent_plane(ground, crs, origin)           # UTM + h
+    centre = from_local_tangent_plane(truth.as_array()[:3], crs, origin)[0]
+    lon, lat = Transformer.from_crs(crs, "EPSG:4674", always_xy=True).transform(*origin[:2])
+    k = Proj(CRS(crs)).get_factors(lon, lat).meridional_scale
+    as_cartesian = resect(surveyed, image, INTERIOR).exterior.as_array()[:3]
+    in_plane = resect(to_local_tangent_plane(surveyed, crs, origin), image, INTERIOR)
+    back = from_local_tangent_plane(in_plane.exterior.as_array()[:3], crs, origin)[0]
+    bias = as_cartesian[2] - centre[2]
+    assert 0.8 * 3000 * (k - 1) < bias < 1.05 * 3000 * (k - 1)       # 0.32 to 0.42 m high
+    assert np.abs(back - centre).max() < 1e-5
+
+
 def test_a_given_initial_orientation_is_used():
     camera = FrameCamera(INTERIOR, TRUTH)
     ground, image = gcps(camera, 6, seed=3)

@@ -55,9 +55,10 @@ def band_misregistration(bands, window=64, spacing=None, upsample=100, feature="
       removes the smooth part of the scene, whose windows' cut edges pull
       phase correlation towards zero shift (:func:`~rsgeo.registration.edge_share`).
     * Iterations as :func:`~rsgeo.registration.correlation_tiepoints` does them, but for a
-      translation only and with an exact shift: the moving band is moved back
+      translation only and with a Fourier shift: the moving band is moved back
       by the current estimate with the Fourier shift theorem (mirrored at its
-      borders), its feature recomputed and the windows correlated again, until
+      borders; exact only for a band-limited, periodic signal, so sharp edges
+      ring a little), its feature recomputed and the windows correlated again, until
       the mean shift left is under half the sub-pixel step. On the test bands
       this recovers every pair's shift to better than 0.02 px; moving the band
       by cubic convolution instead (what :func:`~rsgeo.registration.correlation_tiepoints`
