@@ -27,9 +27,9 @@ PROJ. PROJ, which cannot run compiled, transforms a projected grid's cells
 (and the DEM's, when the DEM is projected) strip by strip, through
 ``rasterio.warp.transform``. Then
 :func:`rsgeo.resample.interpolate`, with the kernel scale gdalwarp computes.
-``benchmarks/orthorectify.py`` times it against GDAL. Note that gdalwarp does not approximate RPC + DEM by default:
-given ``RPC_DEM`` its error threshold is 0 (exact) unless ``-et`` says
-otherwise.
+``benchmarks/orthorectify.py`` times it against GDAL. Note that gdalwarp does
+not approximate RPC + DEM by default: given ``RPC_DEM`` its error threshold is 0
+(exact) unless ``-et`` says otherwise.
 """
 
 from functools import partial
@@ -271,6 +271,7 @@ def orthorectify(image, rpc, dem, dem_transform, dst_transform, dst_shape, metho
         bounding box there (:func:`rsgeo.resample.grid_scale`; edge points
         off the DEM are left out, as GDAL leaves out points its transformer
         fails on). Give 1 for the plain 2 × 2 and 4 × 4 kernels.
+
     Returns
     -------
     ndarray

@@ -11,7 +11,8 @@ Written once, here, in two paths:
 - :func:`gdalwarp_reproject`: what ``gdalwarp`` itself gives, through
   ``rasterio.warp.reproject`` (GDAL's chunked warp operation, ``ChunkAndWarpImage``): its
   approximate transformer with a 0.125-pixel threshold (rasterio 1.4 uses it between two grids
-  and has no ``tolerance`` argument; with RPCs and ``RPC_DEM`` it is exact) and its kernel scale computed per chunk, from the unpadded source window.
+  and has no ``tolerance`` argument; with RPCs and ``RPC_DEM`` it is exact) and its kernel
+  scale computed per chunk, from the unpadded source window.
   Checked with rasterio 1.4.4 and GDAL 3.10.3: given an array, rasterio's ``_reproject``
   replaces ``dst_nodata`` by ``dst_nodata or src_nodata``, so a destination nodata of 0 would be
   dropped; the destination here is therefore a dataset band carrying ``nodata``, which keeps it
