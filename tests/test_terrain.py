@@ -1,10 +1,10 @@
 """rsgeo.relief, rsgeo.sensors (RPCs), rsgeo.dem and rsgeo.ortho, with GDAL as the oracle.
 
 GDAL through rasterio: ``RPCTransformer`` for the RPC equations, ``reproject(..., rpcs=...,
-RPC_DEM=...)`` for the orthoimage (given RPC_DEM, GDAL's warper uses its exact transformer;
-DEM bilinear; GDAL's own kernel scale, or XSCALE = YSCALE given). The synthetic DEMs are heights above the ellipsoid (``dem_vertical="ellipsoidal"``), as GDAL
-takes a DEM without a vertical CRS; with ``"EGM96"`` the orthoimage is GDAL's on the DEM plus
-PROJ's geoid undulation.
+RPC_DEM=...)`` for the orthoimage (given RPC_DEM, GDAL's warper uses its exact transformer; DEM
+bilinear; GDAL's own kernel scale, or XSCALE = YSCALE given). The synthetic DEMs are heights
+above the ellipsoid (``dem_vertical="ellipsoidal"``), as GDAL takes a DEM without a vertical
+CRS; with ``"EGM96"`` the orthoimage is GDAL's on the DEM plus PROJ's geoid undulation.
 """
 
 import os
