@@ -333,13 +333,16 @@ def read_points(path):
     reader = csv.DictReader((line + "\n" for _number, line in lines), delimiter=delimiter)
     header = [name.strip() for name in reader.fieldnames]
     reader.fieldnames = header
-    source_x = "sourceX" if "sourceX" in header else "pixelX"
-    source_y = "sourceY" if "sourceY" in header else "pixelY"
-    missing = {"mapX", "mapY", source_x, source_y} - set(header)
+    older = "sourceX" not in header and ("pixelX" in header or "pixelY" in header)
+    source_x, source_y = ("pixelX", "pixelY") if older else ("sourceX", "sourceY")
+    # the image columns are sourceX, sourceY, or pixelX, pixelY in older files: the message
+    # names the set the header started (sourceX,sourceY when it has neither)
+    missing = [name for name in ("mapX", "mapY", source_x, source_y) if name not in header]
     if missing:
-        raise DataError(_("{path}: header {header} lacks {sorted}; expected "
-                          "mapX,mapY,sourceX,sourceY,enable").format(
-                path=path, header=header, sorted=sorted(missing)))
+        raise DataError(_("{path}: header {header} lacks {sorted}; a QGIS .points file's "
+                          "header is mapX,mapY,sourceX,sourceY,enable (older QGIS: "
+                          "mapX,mapY,pixelX,pixelY,enable)").format(
+                path=path, header=header, sorted=missing))
     map_xy, image_xy, enabled, ids, notes = [], [], [], [], []
     for row in reader:
         number = numbers[reader.line_num - 1]        # the row's last line, counted in the file

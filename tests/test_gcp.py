@@ -229,3 +229,15 @@ def test_write_points_refuses_a_model_of_the_wrong_shape(tmp_path):
     assert not (tmp_path / "g.points").exists()
     gcp.write_points(tmp_path / "g.points", gcps, model)
     assert len(gcp.read_points(tmp_path / "g.points")) == 14
+
+
+def test_read_points_names_the_header_a_file_needs(tmp_path):
+    """Both of QGIS's header sets named, and the missing columns of the one the file started."""
+    path = tmp_path / "table.points"
+    path.write_text("a,b,c\n1,2,3\n")
+    with pytest.raises(ValueError, match=r"lacks \['mapX', 'mapY', 'sourceX', 'sourceY'\]; "
+                                         r".*sourceX,sourceY,enable .*pixelX,pixelY,enable"):
+        gcp.read_points(path)
+    path.write_text("mapX,mapY,pixelX\n1,2,3\n")
+    with pytest.raises(ValueError, match=r"lacks \['pixelY'\]"):
+        gcp.read_points(path)

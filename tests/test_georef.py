@@ -504,3 +504,9 @@ def test_far_but_physical_coordinates_still_reach_proj():
     # the geographic limit is in turns, not metres: 720° still reaches PROJ
     moved = crs.transform_points([[720.0, 0.0]], "EPSG:4326", "EPSG:4618", check_area=False)
     assert np.isfinite(moved).all()
+
+
+def test_georeference_blames_a_wrong_order_not_the_kind():
+    raster, gcps = data.load("cbers2b_rgb342"), data.load_gcps("cbers2b_ccd_hrc")
+    with pytest.raises(TypeError, match="order must be a number, got str '2'"):
+        resample.georeference(raster, gcps, "polynomial", order="2")

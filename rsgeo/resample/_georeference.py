@@ -230,7 +230,8 @@ _DEFAULT_ORDER = 1
 def _fit(gcps, kind, order):
     """Map -> image model of the enabled GCPs."""
     if kind == "polynomial":
-        return gcps.fit(1 if order is None else order)
+        # the order checked as an order (order="2" is a wrong order, not a wrong kind)
+        return gcps.fit(1 if order is None else order, kind="polynomial")
     fit_transform = getattr(_transforms, "fit_transform", None)   # the other model kinds
     if fit_transform is None:
         raise GCPError(_("kind {kind!r} is not available; use kind='polynomial' with an "
