@@ -17,7 +17,10 @@ publishes as its own repository (never the course's, which holds the worked solu
   ``LICENSE``, so that ``pip install -r requirements.txt`` works from the edition alone;
 - its own ``README.md``, for students, in English and Portuguese.
 
-The instructors' tools (grader, printer, this script), the tests and the benchmarks stay out.
+The instructors' tools (grader, gradebook, printer, this script), the tests and the benchmarks
+stay out, and so does the book's *Teaching guide* (``INSTRUCTORS_ONLY``: its page, its
+catalogue and its entry in ``_toc.yml``), which is written for instructors: marking, the
+mistakes the checks recognise, how to run the course.
 
 **Where the launch buttons point.** The edition's ``repository.url`` (Binder, Colab and the
 repository button) and the URL every notebook's first cell clones outside the course's
@@ -66,6 +69,8 @@ PLACEHOLDER = "https://github.com/OWNER/REPOSITORY"
 FIRST_CELL_URL = re.compile(r'^(\s*url = )"[^"]*"', flags=re.M)
 FIRST_CELL_MARK = "# Outside the course's environment"
 TITLE_SUFFIX = {"_config.yml": " (student edition)", "_config_pt.yml": " (edição do estudante)"}
+#: pages of the book for instructors only: the student edition (and its PDF) leaves them out
+INSTRUCTORS_ONLY = ("book/teaching_guide",)
 
 
 def ignored(folder, names):
@@ -73,7 +78,22 @@ def ignored(folder, names):
     left_out = set(shutil.ignore_patterns(*IGNORED)(folder, names))
     if Path(folder) == ROOT / "exercises":
         left_out.update(name for name in names if not name.endswith(".ipynb"))
+    # the instructors' pages, and their catalogues (locales/<language>/LC_MESSAGES/book/...)
+    for page in INSTRUCTORS_ONLY:
+        parent, stem = page.rsplit("/", 1)
+        if Path(folder).as_posix().endswith("/" + parent):
+            left_out.update(name for name in names if name.rsplit(".", 1)[0] == stem)
     return left_out
+
+
+def student_toc(text):
+    """``_toc.yml``'s ``text`` without the pages for instructors only (``INSTRUCTORS_ONLY``)."""
+    for page in INSTRUCTORS_ONLY:
+        text = re.sub(rf"^[ \t]*- file: {re.escape(page)}[ \t]*\n", "", text, flags=re.M)
+    if any(re.search(rf"\b{re.escape(page)}\b", text) for page in INSTRUCTORS_ONLY):
+        raise ValueError("_toc.yml names a page for instructors only in a way the student "
+                         f"edition cannot remove: {', '.join(INSTRUCTORS_ONLY)}")
+    return text
 
 
 def strip_solutions(source):
@@ -252,6 +272,8 @@ def make_student_edition(output, repository=None):
     for name in CONFIGS:
         path = output / name
         path.write_text(student_config(path.read_text(), name, repository))
+    toc = output / "_toc.yml"
+    toc.write_text(student_toc(toc.read_text()))
     title = yaml.safe_load((ROOT / "_config.yml").read_text())["title"]
     (output / "README.md").write_text(STUDENT_README.format(title=title))
     for notebook in sorted((output / "book").glob("*.ipynb")) + sorted(

@@ -1,8 +1,15 @@
 """The printable course: exercises/print_course.py prints the instructor's edition (the whole
-book but its API reference) and the student edition; each PDF is labelled, has a cover, a table of
-contents and an outline, every chapter with its figures and typeset equations (no TeX source
-left by MathJax), links inside the document instead of to the print server, and nothing cut at
-the right edge.
+book but its API reference) and the student edition (without the teaching guide), in English and
+in Portuguese; each PDF is labelled, has a cover (naming the commit, or the package's version in
+a copy without git history), a numbered table of contents with each entry's page and an outline,
+every chapter with its figures and typeset equations (no TeX source left by MathJax), links
+inside the document instead of to the print server, nothing cut at the right edge, no blank page,
+no empty code frame, and wrapped code lines that keep their indentation.
+
+The four small PDFs (each edition in each language, of chapter 1 and exercises 1: their
+executions are the HTML build's, so they take seconds each) check the languages, the contents'
+page numbers and the blank pages; a page made here checks the hanging indent, the empty cells
+and a code block taller than what is left of a page.
 
 The instructor's edition is printed whole (about 40 s here, as before); the student edition only
 chapter 3 (a wide table, a long code line) and exercises 1 (a few seconds), which is what sets
@@ -134,7 +141,7 @@ def test_each_edition_says_which_it_is_on_its_cover_and_every_page(edition):
     cover = flat(pages[0])
     assert "Geometric correction of remote-sensing images" in cover.replace("- ", "-")
     assert label in cover and "Language: English" in cover
-    assert re.search(r"Printed \d{4}-\d\d-\d\d from commit \w+", cover), cover
+    assert re.search(r"Printed \d{4}-\d\d-\d\d from (commit \w+|rsgeo \d)", cover), cover
     unlabelled = [n for n, page in enumerate(pages, start=1) if label not in page]
     assert not unlabelled, f"pages without the running header {label!r}: {unlabelled[:10]}"
     assert other not in "\n".join(pages)
@@ -201,3 +208,122 @@ def test_untypeset_math_stops_the_print(tmp_path):
     with pytest.raises(RuntimeError, match="still TeX source"):
         print_course.print_pdf(tmp_path / "page.html", tmp_path / "page.pdf", timeout_s=20)
     assert not (tmp_path / "page.pdf").exists()
+
+
+# -- Both editions in both languages, on a small book ------------------------------------------
+
+SMALL_PAGES = ["book/01_systematic_distortions", "exercises/ex01_distortions"]
+COVERS = {"en": ("Geometric correction of remote-sensing images", "Language: English",
+                 "Contents", "1. Systematic distortions"),
+          "pt_BR": ("Correção geométrica de imagens de sensoriamento remoto",
+                    "Língua: Português (Brasil)", "Sumário", "1. Distorções sistemáticas")}
+# a line of the contents: "  2.   1. Systematic distortions ........ 5"
+CONTENTS_LINE = re.compile(r"^\s*(\d+)\.\s+(.+?)\s{2,}(\d+)\s*$")
+
+
+@pytest.fixture(scope="module", params=[(edition, language) for edition in print_course.EDITIONS
+                                        for language in print_course.LANGUAGES],
+                ids=lambda param: "-".join(param))
+def small(request, tmp_path_factory):
+    """(edition, language, path, pages' text) of chapter 1 and exercises 1 printed."""
+    edition, language = request.param
+    folder = tmp_path_factory.mktemp(f"{edition}-{language}")
+    out = folder / "small.pdf"
+    run = subprocess.run([sys.executable, str(ROOT / "exercises" / "print_course.py"),
+                          "--edition", edition, "--language", language, "--build-dir",
+                          str(folder), "--out", str(out), "--only", *SMALL_PAGES],
+                         capture_output=True, text=True, timeout=1500)
+    assert run.returncode == 0, (run.stdout + run.stderr)[-3000:]
+    return edition, language, out, print_course.pdf_pages(out)
+
+
+def test_each_edition_prints_in_both_languages(small):
+    edition, language, _, pages = small
+    title, language_line, contents, chapter = COVERS[language]
+    label = print_course.TEXTS[language]["editions"][edition]
+    cover = flat(pages[0]).replace("- ", "-")
+    assert title in cover and label in cover and language_line in cover, cover
+    assert re.search(r"\d{4}-\d\d-\d\d (from|a partir do) commit \w+", cover), cover
+    assert all(label in page for page in pages), "a page without the running header"
+    text = flat("\n".join(pages))
+    assert contents in flat(pages[1]) and chapter in text
+    others = {print_course.TEXTS[lang]["editions"][ed] for lang in print_course.LANGUAGES
+              for ed in print_course.EDITIONS} - {label}
+    assert not [other for other in others if other in text]
+    if language == "pt_BR":          # the Portuguese book: its text, its verdicts
+        assert "Exercícios 1: distorções sistemáticas" in text
+        assert "Systematic distortions" not in text and "Correct:" not in text
+    if edition == "student":
+        assert "BEGIN SOLUTION" not in text and "skew_km = ..." in text
+        assert not re.search(r"\b(Correct|Correto):", text)
+    else:
+        assert "BEGIN SOLUTION" in text and re.search(r"\b(Correct|Correto): `skew_km`", text)
+
+
+def test_the_contents_give_each_entry_its_page(small):
+    _, language, _, pages = small
+    entries = [CONTENTS_LINE.match(line) for line in pages[1].splitlines()]
+    entries = [(int(found[1]), found[2], int(found[3])) for found in entries if found]
+    assert [number for number, *_ in entries] == [1, 2, 3], pages[1]
+    assert entries[0][2] == 3                      # the introduction, after cover and contents
+    for number, title, page in entries[1:]:
+        first_lines = " ".join(pages[page - 1].split()[:40])
+        assert title.strip() in first_lines, (number, title, page)
+        assert title.strip() not in " ".join(pages[page - 2].split()), "on the page before"
+    assert entries[1][2] < entries[2][2] <= len(pages)
+
+
+def test_no_page_is_blank(small):
+    assert print_course.blank_pages(small[2]) == []
+
+
+def test_the_teaching_guide_is_for_the_instructors_edition_only():
+    guide = "book/teaching_guide"
+    files = lambda toc: [entry["file"] for part in toc["parts"]  # noqa: E731
+                         for entry in part["chapters"]]
+    assert guide in files(print_course.print_toc())
+    assert guide not in files(print_course.print_toc(edition="student"))
+    with pytest.raises(ValueError, match="for instructors only"):
+        print_course.print_toc(only=[guide], edition="student")
+    assert "Teaching guide" in chapter_titles()
+
+
+def test_a_copy_without_git_history_names_its_version(tmp_path):
+    assert print_course.course_origin()[0] == "commit"
+    shutil.copyfile(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    assert print_course.course_origin(tmp_path) == ("version", "rsgeo 0.1.0")
+    facts = print_course.cover_facts(root=tmp_path)
+    assert facts["lines"][0].endswith("from rsgeo 0.1.0 (a copy without git history)")
+    facts = print_course.cover_facts(root=tmp_path, language="pt_BR")
+    assert "a partir do rsgeo 0.1.0" in facts["lines"][0]
+
+
+LONG_LINE = ("    value = compute(first_argument, second_argument, third_argument, "
+             "fourth_argument, fifth_argument, sixth_argument)")
+
+
+def test_wrapped_code_hangs_under_its_indentation_and_empty_frames_go(tmp_path):
+    # a long indented line; an empty cell (its code removed, no output); then, after text
+    # that fills part of the page, a code block taller than what is left of it
+    tall = "\n".join(f"line_{n} = {n}" for n in range(70))
+    (tmp_path / "page.html").write_text(
+        "<html><head><meta charset='utf-8'><script>window.MathJax = {startup: "
+        "{promise: Promise.resolve()}};</script></head><body><h1>A page</h1>"
+        f"<div class='cell'><div class='cell_input'><pre>def f():\n{LONG_LINE}\n"
+        "    return value\n</pre></div></div>"
+        "<div class='cell tag_remove-input'><div class='cell_input'><pre>\n</pre></div></div>"
+        + "<p>Some text.</p>" * 25
+        + f"<div class='cell'><div class='cell_input' style='border-left: 3px solid green'>"
+        f"<pre>{tall}</pre></div></div></body></html>")
+    result = print_course.print_pdf(tmp_path / "page.html", tmp_path / "page.pdf",
+                                    timeout_s=30)
+    assert result["dropped"] >= 1 and result["tall"] >= 1        # the empty cell, the tall one
+    lines = [line for line in print_course.pdf_pages(tmp_path / "page.pdf")[2].splitlines()
+             if line.strip()]
+    start = next(n for n, line in enumerate(lines) if "value = compute(" in line)
+    indent = len(lines[start]) - len(lines[start].lstrip())
+    continued = lines[start + 1]
+    assert "return value" not in continued, "the line did not wrap"
+    # the wrapped part starts further right than the line's own indentation
+    assert len(continued) - len(continued.lstrip()) > indent, lines[start:start + 2]
+    assert print_course.blank_pages(tmp_path / "page.pdf") == []

@@ -25,6 +25,7 @@ from notebook_runner import ROOT, execute_notebook
 sys.path.insert(0, str(ROOT / "exercises"))
 from make_student_edition import (  # noqa: E402
     BEGIN,
+    INSTRUCTORS_ONLY,
     PLACEHOLDER,
     make_student_edition,
     solution_lines,
@@ -32,7 +33,9 @@ from make_student_edition import (  # noqa: E402
     student_repository,
 )
 
-CHAPTERS = sorted(path.relative_to(ROOT) for path in (ROOT / "book").glob("*.ipynb"))
+# the book's notebooks that students get (the teaching guide is for instructors only)
+CHAPTERS = sorted(path.relative_to(ROOT) for path in (ROOT / "book").glob("*.ipynb")
+                  if path.relative_to(ROOT).with_suffix("").as_posix() not in INSTRUCTORS_ONLY)
 
 
 @pytest.fixture(scope="module")
@@ -48,6 +51,18 @@ def test_solutions_are_gone_and_checks_stay(edition):
                    if cell.cell_type == "code"]
         assert not any(BEGIN in source for source in sources)
         assert any("check_" in source for source in sources)
+
+
+def test_the_teaching_guide_stays_with_the_instructors(edition):
+    assert INSTRUCTORS_ONLY == ("book/teaching_guide",)
+    assert (ROOT / "book" / "teaching_guide.ipynb").exists()
+    assert not list(edition.rglob("teaching_guide*"))         # page, catalogues
+    assert "teaching_guide" not in (edition / "_toc.yml").read_text()
+    toc = yaml.safe_load((edition / "_toc.yml").read_text())
+    course = yaml.safe_load((ROOT / "_toc.yml").read_text())
+    pages = [entry["file"] for part in toc["parts"] for entry in part["chapters"]]
+    assert pages == [entry["file"] for part in course["parts"] for entry in part["chapters"]
+                     if entry["file"] not in INSTRUCTORS_ONLY]
 
 
 def test_chapters_are_the_instructors_chapters(edition):
@@ -97,6 +112,7 @@ def test_the_edition_builds_with_every_chapter_executed(edition):
     for exercise in sorted((edition / "exercises").glob("*.ipynb")):
         page = (html / "exercises" / exercise.with_suffix(".html").name).read_text()
         assert BEGIN not in page and "check_" in page
+    assert not (html / "book" / "teaching_guide.html").exists()
 
 
 def test_unbalanced_markers_are_refused():
