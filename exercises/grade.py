@@ -2,33 +2,43 @@
 
     python exercises/grade.py SUBMISSIONS [--out grades.csv] [--html grades.html] [--jobs 2]
                               [--cell-timeout 60] [--notebook-timeout 600] [--memory-mb 3072]
+                              [--unsafe]
 
 SUBMISSIONS holds one folder per student (with that student's ``.ipynb`` files, at any depth)
 or one ``.ipynb`` per student (the student is the file's name). Each notebook is matched to the
 course's exercise notebook (``exercises/*.ipynb``) by its content (its cells), else by its file
 name; a notebook saved under another exercise's name is graded as the exercise it holds and
-flagged in the ``note`` column ("saved as ex04_resampling.ipynb, graded as ex02b_datums").
+flagged in the ``note`` column ("saved as ex04_resampling.ipynb, graded as ex02b_datums"). A
+symbolic link is refused (it could point at the solutions).
 
 A *task* is a solution cell of the course's notebook (one with ``### BEGIN SOLUTION``), its
 answers (the names the student edition sets to ``...``) and the check cells that follow it
 (cells that call ``check_...``). For each submission the grader
 
-1. starts a fresh kernel (sandbox.py): in an empty temporary folder, with a memory limit
-   (``--memory-mb``), and inside bubblewrap (no network, a read-only system, no view of the
-   course's solutions or the other submissions) where ``bwrap`` is installed; without it, an
-   audit hook in the kernel refuses to read those folders or write in the course's repository,
-   and the ``note`` column says that the sandbox was not available;
+1. starts a fresh kernel in bubblewrap (sandbox.py): its own process tree (PID namespace, gone
+   with the kernel), no network, the whole system read-only except its own scratch folder, the
+   course's repository, the submissions, ``/tmp``, ``/run`` and the home folder hidden except
+   what the kernel needs (Python, rsgeo and rsgeo_course read-only, the notebook itself), and a
+   memory limit (``--memory-mb``). Without ``bwrap`` it refuses to grade, unless told
+   ``--unsafe``: then an audit hook stands in, which is no security boundary, and every row's
+   ``note`` says so. Before the first submission it starts one such kernel to check the sandbox
+   works, and stops with exit status 3 and the reason (bubblewrap's own message) if it does not;
 2. runs the student's code cells in order, each with a time limit (``--cell-timeout``) inside a
    time limit for the whole notebook (``--notebook-timeout``); an error does not stop the run, a
-   cell that runs too long is interrupted. The student's own check cells are skipped;
+   cell that runs too long is interrupted. A kernel that dies, or a cell that does not stop when
+   interrupted, costs only its task: a fresh kernel runs the cells before it again (not it) and
+   the next tasks are graded. The student's own check cells are skipped;
 3. after each task's cells, reads the task's answers out of the kernel as JSON (numbers, text,
-   small arrays), and judges them *in the grader's process* (judge.py): the course's check cell
-   runs there with the genuine checks and the course's own inputs (the course notebook run with
-   its worked solutions). Nothing a student's code does in its kernel reaches a verdict.
+   small arrays) through a reader installed before any student code (judge.py: its result comes
+   back in the execute reply, which no print or hook reaches, and a variable named ``list`` or
+   ``type`` does not disturb it), and judges them *in the grader's process*: the course's check
+   cell runs there with the genuine checks and the course's own inputs (the course notebook run
+   with its worked solutions). Nothing a student's code does in its kernel reaches a verdict.
 
 Each task gets one verdict: ``Correct``, ``Not yet`` (with the check's message and hint),
 ``not attempted`` (the answer is still ``...``), ``error: <exception>`` (the student's own cell's
-error, e.g. ``error: SyntaxError``, not what follows from it) or ``timed out``. A numeric answer
+error, e.g. ``error: SyntaxError``, not what follows from it; ``error: DeadKernelError`` when
+the kernel died in the task) or ``timed out``. A numeric answer
 is judged by one tolerance rule (judge.py): the check's, with a float32 read as the decimal it
 prints as, or the right answer rounded to 2 decimals in the task's unit (within 1 %).
 
@@ -46,9 +56,10 @@ import concurrent.futures
 import csv
 import difflib
 import html
+import os
 import re
-import secrets
 import shutil
+import site
 import sys
 import tempfile
 import time
@@ -56,7 +67,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import nbformat
-from nbclient import NotebookClient
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
@@ -71,7 +81,20 @@ CHECK_CALL = re.compile(r"^\s*check_\w+\(", flags=re.M)
 EXERCISE_TITLE = re.compile(r":::\{exercise\}\s*(\S+)")
 FIELDS = ("student", "notebook", "task", "verdict", "message", "file", "note")
 CONTENT_MATCH = 0.3          # the share of a course notebook's cells a submission must share
-NO_SANDBOX = "sandbox: bwrap not installed (memory limit, temporary folder and audit hook only)"
+MAX_RESTARTS = 3             # fresh kernels a notebook may need after one died or hung
+KERNEL_FAILED = "error: the grader could not start a kernel"
+NO_BWRAP = ("bubblewrap (bwrap) is not installed, and the grader runs no student's code without "
+            "its sandbox: install it (Debian and Ubuntu: apt install bubblewrap), or pass "
+            "--unsafe to grade anyway (every row's note will say so)")
+UNSAFE_NOTE = ("UNSAFE: graded without bubblewrap (--unsafe): the notebook's code could read "
+               "the solutions and the other submissions, write into the course and outlive its "
+               "kernel; a memory limit, a scratch folder and an audit hook were all that stood "
+               "in its way")
+DEAD = {"dead": "the kernel died while running this cell (os._exit, a crash or the memory "
+                "limit); a fresh kernel ran the cells before it again, without it",
+        "hung": "the cell ran too long and did not stop when interrupted (or its reply was "
+                "over 64 MiB); a fresh kernel ran the cells before it again, without it",
+        "timeout": "the cell ran too long and was interrupted"}
 
 
 def printable(text):
@@ -251,13 +274,44 @@ class Row:
     note: str = ""              # a misfiled notebook, a missing sandbox
 
 
-@dataclass
-class Fence:
-    """What the student's kernel may not see or change, and its memory (sandbox.py)."""
+Fence = sandbox.Fence
 
-    memory: int = sandbox.DEFAULT_MEMORY
-    hidden: list = field(default_factory=list)
-    protected: list = field(default_factory=list)
+
+def make_fence(folder, course_folder=COURSE, outputs=(), memory=sandbox.DEFAULT_MEMORY,
+               unsafe=False, private=""):
+    """What the kernels grading the class in ``folder`` may see, change and take.
+
+    Parameters
+    ----------
+    folder : path-like
+        SUBMISSIONS (kept secret: a kernel sees only the notebook it grades).
+    course_folder : path-like
+        The course's exercise notebooks, with solutions (secret).
+    outputs : iterable of path-like
+        The grader's output files (shown empty; their folders hidden).
+    memory : int
+        Bytes of address space per kernel.
+    unsafe : bool
+        Allow grading without bubblewrap (an audit hook instead) where it is not installed.
+    private : str
+        The grader's folder for the kernels' scratch folders.
+
+    Returns
+    -------
+    sandbox.Fence
+    """
+    outputs = [Path(out).resolve() for out in outputs]
+    secret = [Path(course_folder).resolve(), HERE, ROOT / "_build", ROOT / ".git",
+              Path(folder).resolve()]
+    hidden = [ROOT, *sandbox.private_places(), *(out.parent for out in outputs)]
+    protected = [ROOT, sys.prefix, sys.base_prefix, *site.getsitepackages(),
+                 *(out.parent for out in outputs)]
+    return sandbox.Fence(memory=int(memory), hidden=sorted({str(path) for path in hidden}),
+                         secret=sorted({str(path) for path in secret}),
+                         readable=sandbox.needed_paths(),
+                         blanked=[str(out) for out in outputs], folder=str(private),
+                         unsafe=bool(unsafe) and sandbox.bwrap_path() is None,
+                         protected=sorted({str(path) for path in protected}))
 
 
 def _error_text(reply_content):
@@ -275,7 +329,7 @@ def _task_row(task, found, failed, scope):
     if found is None:
         if failed:
             return [f"error: {failed.get('ename')}", _error_text(failed)]
-        return ["error: the answers could not be read", "the kernel printed none"]
+        return ["error: the answers could not be read", "the kernel's reader gave none"]
     answers, missing = {}, []
     for name in task.answers:
         try:
@@ -301,79 +355,106 @@ def _task_row(task, found, failed, scope):
     return [verdict, message + (f" Hint: {hint}" if hint else "")]
 
 
-async def _run(notebook, course, cell_timeout, notebook_timeout, student, name, fence):
-    token = "RSGEO-ANSWERS-" + secrets.token_hex(8) + "="
-    extractor = "_rsgeo_answers_" + secrets.token_hex(6)
-    sources = [_normal(cell.source) for cell in notebook.cells if cell.cell_type == "code"]
-    code_cells = [cell for cell in notebook.cells if cell.cell_type == "code"]
-    steps = plan(course, sources)
+class _KernelLost(Exception):
+    """The notebook's kernels died or hung more often than :data:`MAX_RESTARTS`."""
+
+
+def _failure(reply):
+    """What a cell's :class:`sandbox.Reply` says went wrong (None when it ran), as an error
+    reply's content: ``ename`` and ``evalue``."""
+    if reply.status == "ok":
+        return None
+    if reply.status == "error" or reply.content.get("ename") == "TimedOut":
+        return reply.content
+    return {"ename": "DeadKernelError" if reply.status == "dead" else "TimedOut",
+            "evalue": DEAD[reply.status]}
+
+
+async def _run(notebook, course, cell_timeout, notebook_timeout, student, name, fence,
+               path=None):
+    code_cells = [cell.source for cell in notebook.cells if cell.cell_type == "code"]
+    steps = plan(course, [_normal(source) for source in code_cells])
     try:
         scopes, course_failure = judge.course_scopes(course), None
     except Exception as error:                             # noqa: BLE001 - the course is broken
         scopes, course_failure = {}, f"{type(error).__name__}: {str(error)[:300]}"
-    folder = tempfile.mkdtemp(prefix="rsgeo-grade-")
-    manager = sandbox.SandboxedKernelManager(
-        kernel_name="python3", memory=fence.memory, hidden=fence.hidden,
-        protected=fence.protected, work=folder)
-    runner = nbformat.v4.new_notebook()
-    client = NotebookClient(runner, km=manager, kernel_name="python3", timeout=cell_timeout,
-                            allow_errors=True, interrupt_on_timeout=True, error_on_timeout={
-                                "ename": "TimedOut", "evalue": "the cell ran too long"},
-                            resources={"metadata": {"path": folder}})
-    errors = []
-    client.on_cell_error = lambda cell, cell_index, execute_reply: errors.append(
-        execute_reply["content"])
-    rows, deadline = [], time.monotonic() + notebook_timeout
-    cell_errors = {}                 # task name -> the first error or timeout in its cells
-    try:
-        async with client.async_setup_kernel():
-            async def execute(source):
-                remaining = deadline - time.monotonic()
-                if remaining <= 0:
-                    return {"ename": "TimedOut", "evalue": "the notebook's time is up"}, ""
-                client.timeout = max(1, int(min(cell_timeout, remaining)))
-                cell = nbformat.v4.new_code_cell(source)
-                runner.cells.append(cell)
-                errors.clear()
-                await client.async_execute_cell(cell, len(runner.cells) - 1)
-                stdout = "".join(output.get("text", "") for output in cell.outputs
-                                 if output.get("name") == "stdout")
-                cell.outputs = []                    # a huge output is not kept
-                return (errors[0] if errors else None), stdout
+    reader = judge.reader_name()
+    kernel = sandbox.StudentKernel(fence, notebook=str(path) if path else None,
+                                   exec_lines=[judge.reader_install(reader)])
+    deadline = time.monotonic() + notebook_timeout
+    rows, cell_errors, ran, restarts = [], {}, [], 0
 
-            task = course.tasks[0]             # the task whose cells are running
-            for kind, value in steps:
-                if kind == "cell":
-                    failed, _ = await execute(code_cells[value].source)
-                    if failed and task is not None:
-                        cell_errors.setdefault(task.name, failed)
-                    continue
-                failed = cell_errors.get(value.name)
-                found = None
-                if not (failed and failed.get("ename") == "TimedOut"):
-                    trouble, stdout = await execute(judge.EXTRACT.format(
-                        function=extractor, names=value.answers, token=token,
-                        max_items=judge.MAX_ITEMS))
-                    found = None if trouble else judge.parse_answers(stdout, token)
-                verdict, message = _task_row(value, found, failed, scopes.get(value.name))
-                if course_failure:
-                    message = f"{message} (the course notebook failed: {course_failure})"
-                rows.append(Row(student, name, value.name, verdict, message))
-                following = course.tasks.index(value) + 1
-                task = course.tasks[following] if following < len(course.tasks) else None
-    except Exception as error:                             # noqa: BLE001 - a dead kernel, etc.
+    async def execute(source, **options):
+        remaining = deadline - time.monotonic()
+        if remaining <= 0:
+            return sandbox.Reply("timeout", {"ename": "TimedOut",
+                                             "evalue": "the notebook's time is up"})
+        return await kernel.execute(source, min(cell_timeout, remaining), **options)
+
+    async def recover():
+        """A fresh kernel, in which the cells that ran so far run again (not those that
+        killed or hung a kernel, nor those interrupted)."""
+        nonlocal restarts
+        while True:
+            restarts += 1
+            if restarts > MAX_RESTARTS:
+                raise _KernelLost(f"its kernel died or hung {restarts - 1} times: the tasks "
+                                  "after that were not graded")
+            await kernel.start()
+            for index in list(ran):
+                reply = await execute(code_cells[index])
+                if reply.status in ("dead", "hung"):
+                    ran.remove(index)
+                    break
+            else:
+                return
+
+    try:
+        await kernel.start()
+        task = course.tasks[0]             # the task whose cells are running
+        for kind, value in steps:
+            if kind == "cell":
+                reply = await execute(code_cells[value])
+                failed = _failure(reply)
+                if failed and task is not None:
+                    cell_errors.setdefault(task.name, failed)
+                if reply.status in ("ok", "error"):
+                    ran.append(value)
+                elif reply.status in ("dead", "hung"):
+                    await recover()
+                continue
+            failed = cell_errors.get(value.name)
+            found = None
+            if not (failed and failed.get("ename") == "TimedOut"):
+                reply = await execute("", silent=True, user_expressions={
+                    "answers": judge.reader_expression(reader, value.answers)})
+                if reply.status == "ok":
+                    found = judge.read_reply(reply.content.get("user_expressions", {})
+                                             .get("answers"))
+                elif reply.status in ("dead", "hung"):
+                    failed = failed or _failure(reply)
+                    await recover()
+            verdict, message = _task_row(value, found, failed, scopes.get(value.name))
+            if course_failure:
+                message = f"{message} (the course notebook failed: {course_failure})"
+            rows.append(Row(student, name, value.name, verdict, message))
+            following = course.tasks.index(value) + 1
+            task = course.tasks[following] if following < len(course.tasks) else None
+    except (_KernelLost, sandbox.SandboxError) as error:
+        if not rows and isinstance(error, sandbox.SandboxError):
+            raise                              # not one kernel: the grader's trouble
+        verdict = KERNEL_FAILED if isinstance(error, sandbox.SandboxError) else (
+            "error: DeadKernelError")
         done = {row.task for row in rows}
-        rows += [Row(student, name, task.name, f"error: {type(error).__name__}", str(error)[:500])
+        rows += [Row(student, name, task.name, verdict, str(error)[:1500])
                  for task in course.tasks if task.name not in done]
     finally:
-        if client.km is not None and await client.km.is_alive():
-            await client.km.shutdown_kernel(now=True)
-        shutil.rmtree(folder, ignore_errors=True)
+        await kernel.stop()
     return rows
 
 
 def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600, fence=None,
-                   shown_as=None):
+                   shown_as=None, within=None):
     """Grade one submitted notebook; never raises for a bad submission.
 
     Parameters
@@ -386,16 +467,21 @@ def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600
         The course's exercise notebooks (:func:`course_notebooks`).
     cell_timeout, notebook_timeout : float
         Seconds one cell, and the whole notebook, may run.
-    fence : Fence, optional
-        The kernel's memory and the folders it may not see or change.
+    fence : sandbox.Fence, optional
+        What the kernels may see, change and take (default: :func:`make_fence` for the
+        notebook's folder).
     shown_as : str, optional
         The ``file`` column (default: the file's name).
+    within : path-like, optional
+        SUBMISSIONS: a file that is a symbolic link, or is not really inside it, is refused.
 
     Returns
     -------
     list of Row
         One row per task of the matched course notebook, or one ``error: ...`` row (task "")
-        for a file that is not a notebook or answers none of the course's.
+        for a file that is not a notebook or answers none of the course's. When no kernel
+        could be started (never the notebook's doing), every task's verdict is
+        :data:`KERNEL_FAILED`.
 
     Raises
     ------
@@ -405,10 +491,14 @@ def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600
     if not (cell_timeout > 0 and notebook_timeout > 0):
         raise ValueError(f"time limits must be positive seconds, got cell {cell_timeout}, "
                          f"notebook {notebook_timeout}")
-    fence = fence or Fence()
+    fence = fence or make_fence(Path(path).parent)
     name = printable(Path(path).name)
     shown_as = printable(shown_as or Path(path).name)
-    note = "" if sandbox.bwrap_path() else NO_SANDBOX
+    note = UNSAFE_NOTE if fence.unsafe else ""
+    real, base = os.path.realpath(path), os.path.realpath(within or Path(path).parent)
+    if os.path.islink(path) or not real.startswith(base.rstrip(os.sep) + os.sep):
+        return [Row(student, name, "", "error: not a notebook",
+                    "a symbolic link, not a notebook: hand in the notebook itself", shown_as)]
     try:
         notebook = nbformat.read(path, as_version=4)
         sources = [_normal(cell.source) for cell in notebook.cells if cell.cell_type == "code"]
@@ -422,7 +512,10 @@ def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600
     name = course.path.name
     try:
         rows = asyncio.run(_run(notebook, course, cell_timeout, notebook_timeout, student, name,
-                                fence))
+                                fence, path))
+    except sandbox.SandboxError as error:                  # the grader's trouble, not theirs
+        rows = [Row(student, name, task.name, KERNEL_FAILED, str(error)[:1500])
+                for task in course.tasks]
     except Exception as error:                             # noqa: BLE001 - never stop the class
         rows = [Row(student, name, task.name, f"error: {type(error).__name__}", str(error)[:500])
                 for task in course.tasks]
@@ -462,12 +555,12 @@ def submissions(folder):
 
 
 def _grade_one(job):
-    student, path, shown_as, cell_timeout, notebook_timeout, courses, fence = job
+    student, path, shown_as, cell_timeout, notebook_timeout, courses, fence, within = job
     if path is None:
         return [Row(student, "", "", "error: no notebook", "the folder holds no .ipynb file",
                     shown_as)]
     return grade_notebook(path, student, courses, cell_timeout, notebook_timeout, fence,
-                          shown_as)
+                          shown_as, within)
 
 
 def progress(done, total, label, stream=sys.stderr, width=30):
@@ -480,7 +573,8 @@ def progress(done, total, label, stream=sys.stderr, width=30):
 
 
 def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=COURSE,
-          show_progress=True, on_rows=None, memory=sandbox.DEFAULT_MEMORY, outputs=()):
+          show_progress=True, on_rows=None, memory=sandbox.DEFAULT_MEMORY, outputs=(),
+          unsafe=False, on_start=None):
     """Grade every submission under ``folder``.
 
     Parameters
@@ -501,7 +595,11 @@ def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=C
     memory : int
         Bytes of memory (address space) each student kernel may take.
     outputs : iterable of path-like
-        The grader's output files: their folders are hidden from the kernels.
+        The grader's output files: shown empty to the kernels, their folders hidden.
+    unsafe : bool
+        Grade even where bubblewrap is not installed (every row's note says so).
+    on_start : callable, optional
+        Called once the sandbox has been tried, before the first submission runs.
 
     Returns
     -------
@@ -512,58 +610,93 @@ def grade(folder, jobs=1, cell_timeout=60, notebook_timeout=600, course_folder=C
     ValueError
         If ``folder`` is not a folder, ``jobs`` is not a positive integer, or the course folder
         holds no exercise notebook.
+    sandbox.SandboxError
+        If bubblewrap is not installed and ``unsafe`` is False, or a kernel cannot be started
+        as the students' will be (a test kernel is started first, with bubblewrap's message).
     """
     if int(jobs) != jobs or jobs < 1:
         raise ValueError(f"jobs must be a positive integer, got {jobs!r}")
     courses = course_notebooks(course_folder)
     if not courses:
         raise ValueError(f"{course_folder} holds no course exercise notebook")
-    hidden = [str(Path(course_folder).resolve()), str(Path(folder).resolve()), str(HERE)]
-    hidden += [str(Path(out).resolve().parent) for out in outputs
-               if Path(out).resolve().parent != ROOT]
-    fence = Fence(int(memory), sorted(set(hidden)), [str(ROOT)])
-    base = Path(folder)
-    work = [(printable(student), path,
-             printable(path.relative_to(base)) if path else printable(student),
-             cell_timeout, notebook_timeout, courses, fence)
-            for student, path in submissions(folder)]
-    rows, total = [], len(work)
-    if show_progress:
-        progress(0, total, "starting")
-    with concurrent.futures.ProcessPoolExecutor(max_workers=int(jobs)) as pool:
-        futures = {pool.submit(_grade_one, job): job for job in work}
-        for done, future in enumerate(concurrent.futures.as_completed(futures), start=1):
-            student, path, shown_as = futures[future][:3]
-            try:
-                these = future.result()
-            except Exception as error:                     # noqa: BLE001 - a crashed worker
-                these = [Row(student, printable(Path(path).name) if path else "", "",
-                             f"error: {type(error).__name__}", str(error)[:500], shown_as)]
-            rows += these
-            if on_rows is not None:
-                on_rows(these)
-            if show_progress:
-                progress(done, total, shown_as)
+    found = submissions(folder)
+    if sandbox.bwrap_path() is None and not unsafe:
+        raise sandbox.SandboxError(NO_BWRAP)
+    private = tempfile.mkdtemp(prefix="rsgeo-grading-")
+    try:
+        fence = make_fence(folder, course_folder, outputs, memory, unsafe, private)
+        if show_progress:
+            progress(0, len(found) or 1, "trying the sandbox")
+        _preflight(fence, course_folder)
+        if on_start is not None:
+            on_start()
+        base = Path(folder)
+        work = [(printable(student), path,
+                 printable(path.relative_to(base)) if path else printable(student),
+                 cell_timeout, notebook_timeout, courses, fence, str(base))
+                for student, path in found]
+        rows, total = [], len(work)
+        if show_progress:
+            progress(0, total, "starting")
+        with concurrent.futures.ProcessPoolExecutor(max_workers=int(jobs)) as pool:
+            futures = {pool.submit(_grade_one, job): job for job in work}
+            for done, future in enumerate(concurrent.futures.as_completed(futures), start=1):
+                student, path, shown_as = futures[future][:3]
+                try:
+                    these = future.result()
+                except Exception as error:                 # noqa: BLE001 - a crashed worker
+                    these = [Row(student, printable(Path(path).name) if path else "", "",
+                                 f"error: {type(error).__name__}", str(error)[:500], shown_as)]
+                rows += these
+                if on_rows is not None:
+                    on_rows(these)
+                if show_progress:
+                    progress(done, total, shown_as)
+    finally:
+        shutil.rmtree(private, ignore_errors=True)
     return sorted(rows, key=lambda row: (row.student, row.file, row.notebook))  # tasks in order
 
 
+def _preflight(fence, course_folder):
+    """Start one kernel as the students' will be; check that it reads answers and, in
+    bubblewrap, that it cannot see the course's notebooks (:func:`sandbox.preflight`)."""
+    reader = judge.reader_name()
+    code = "import rsgeo, rsgeo_course.exercises\nx = 1.5"
+    if not fence.unsafe:
+        code += (f"\nimport os\nassert not os.path.exists({str(course_folder)!r}) or not "
+                 f"os.listdir({str(course_folder)!r}), 'the course is visible in the sandbox'")
+    reply = sandbox.preflight(fence, [judge.reader_install(reader)], {
+        "code": code, "expressions": {"answers": judge.reader_expression(reader, ["x"])}})
+    found = judge.read_reply(reply.content.get("user_expressions", {}).get("answers"))
+    if found != {"x": {"t": "float", "v": "1.5"}}:
+        raise sandbox.SandboxError(f"a test kernel started, but its answers could not be "
+                                   f"read: {reply.content.get('user_expressions')}")
+
+
 class CsvRows:
-    """The grades' CSV, written as the rows come (each notebook's flushed at once)."""
+    """The grades' CSV, written as the rows come (each notebook's flushed at once); the file is
+    created by :meth:`open` or the first rows, not before (a refused run leaves it alone)."""
 
     def __init__(self, path):
-        Path(path).parent.mkdir(parents=True, exist_ok=True)
-        self.file = open(path, "w", newline="", encoding="utf-8")     # noqa: SIM115
-        self.writer = csv.writer(self.file)
-        self.writer.writerow(FIELDS)
-        self.file.flush()
+        self.path, self.file, self.writer = path, None, None
+
+    def open(self):
+        if self.file is None:
+            Path(self.path).parent.mkdir(parents=True, exist_ok=True)
+            self.file = open(self.path, "w", newline="", encoding="utf-8")    # noqa: SIM115
+            self.writer = csv.writer(self.file)
+            self.writer.writerow(FIELDS)
+            self.file.flush()
 
     def __call__(self, rows):
+        self.open()
         for row in rows:
             self.writer.writerow([printable(getattr(row, name)) for name in FIELDS])
         self.file.flush()
 
     def close(self):
-        self.file.close()
+        if self.file is not None:
+            self.file.close()
 
 
 def write_csv(rows, path):
@@ -628,7 +761,9 @@ def write_html(rows, path):
 
 
 def main(argv=None):
-    """The command line; returns the exit status (0 even when students' answers are wrong)."""
+    """The command line; returns the exit status: 0 when every notebook was graded (whatever
+    the verdicts), 2 for bad arguments or when bubblewrap is missing without ``--unsafe``, 3
+    when a student kernel could not be started."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("submissions", help="a folder: one folder or one .ipynb per student")
     parser.add_argument("--out", default="grades.csv", help="the CSV to write (grades.csv)")
@@ -641,17 +776,29 @@ def main(argv=None):
                         help="memory (address space) per student kernel, MiB (3072)")
     parser.add_argument("--course", default=str(COURSE),
                         help="the course's exercise notebooks, with solutions (this folder)")
+    parser.add_argument("--unsafe", action="store_true",
+                        help="grade even without bubblewrap: the notebooks' code can then read "
+                        "the solutions and write into the course (every row's note says so)")
     options = parser.parse_args(argv)
     summary = options.html or str(Path(options.out).with_suffix(".html"))
     if options.memory_mb < 256:
         parser.error(f"--memory-mb must be at least 256, got {options.memory_mb}")
+    if options.unsafe and sandbox.bwrap_path() is None:
+        print(f"grade.py: warning: {UNSAFE_NOTE}", file=sys.stderr)
     streamed = CsvRows(options.out)
     try:
         rows = grade(options.submissions, options.jobs, options.cell_timeout,
                      options.notebook_timeout, options.course, on_rows=streamed,
-                     memory=options.memory_mb * 2 ** 20, outputs=(options.out, summary))
+                     memory=options.memory_mb * 2 ** 20, outputs=(options.out, summary),
+                     unsafe=options.unsafe, on_start=streamed.open)
     except ValueError as error:
         parser.error(str(error))
+    except sandbox.SandboxError as error:
+        missing = sandbox.bwrap_path() is None and not options.unsafe
+        print(f"grade.py: nothing graded: {error}" if missing else
+              f"grade.py: nothing graded: a student kernel cannot start in the sandbox: {error}",
+              file=sys.stderr)
+        return 2 if missing else 3
     finally:
         streamed.close()
     write_csv(rows, options.out)              # from the grader's memory, sorted, last
@@ -660,8 +807,13 @@ def main(argv=None):
               for verdict in VERDICTS}
     print(f"{len(rows)} verdicts ({', '.join(f'{n} {v}' for v, n in counts.items())}) "
           f"in {printable(options.out)} and {printable(summary)}")
-    if not sandbox.bwrap_path():
-        print(NO_SANDBOX)
+    failed = [row for row in rows if row.verdict == KERNEL_FAILED]
+    if failed:
+        print(f"grade.py: {len(failed)} tasks not graded: the grader could not start their "
+              f"kernel: {failed[0].message}", file=sys.stderr)
+        return 3
+    if any(row.note.startswith(UNSAFE_NOTE) or UNSAFE_NOTE in row.note for row in rows):
+        print(f"grade.py: warning: {UNSAFE_NOTE}", file=sys.stderr)
     return 0
 
 

@@ -3,13 +3,13 @@ student's kernel.
 
 The student's kernel only *produces* answers: after each task the grader reads the task's
 answer variables (the names the student edition sets to ``...``) out of the kernel as JSON
-(:data:`EXTRACT`, :func:`decode`). This module, in the grader's own process where no student
-code ever runs, executes the course's notebook with its worked solutions (once per process,
-:func:`course_scopes`) and evaluates each task's check cell there, with the course's own inputs
-and the student's answers put in place of the course's. Nothing a student does in the kernel
-(replace ``Verdict.ok``, ``numpy.isclose``, a helper of ``rsgeo_course.exercises``, the
-grader's code,
-redefine an input such as ``dx, dy = 0.0, 0.0``) reaches the check.
+(:data:`READER`, :func:`read_reply`, :func:`decode`). This module, in the grader's own
+process where no student code ever runs, executes the course's notebook with its worked
+solutions (once per process, :func:`course_scopes`) and evaluates each task's check cell
+there, with the course's own inputs and the student's answers put in place of the course's.
+Nothing a student does in the kernel (replace ``Verdict.ok``, ``numpy.isclose``, a helper of
+``rsgeo_course.exercises``, the grader's code, redefine an input such as
+``dx, dy = 0.0, 0.0``, print or hook what looks like answers) reaches the check.
 
 One tolerance rule for every numeric check
 ------------------------------------------
@@ -31,44 +31,96 @@ import numpy as np
 
 MAX_ITEMS = 100_000           # an answer larger than this is sent as its type and repr only
 
-# Run in the student's kernel after a task's cells: prints TOKEN + the answers as JSON. It uses
-# only what it imports itself; a student who tampers with it can only misreport their own
-# answers, never a verdict (the verdicts are made here, from the course's inputs).
-EXTRACT = '''
-def {function}(names, scope):
-    json, builtins = __import__("json"), __import__("builtins")
-    def encode(value, depth=0):
-        if value is Ellipsis:
-            return {{"t": "ellipsis"}}
-        if value is None or isinstance(value, (bool, str)):
-            return {{"t": "plain", "v": value}}
-        if isinstance(value, int):
-            return {{"t": "int", "v": str(int(value))}}
-        if isinstance(value, float):
-            return {{"t": "float", "v": repr(float(value))}}
-        if isinstance(value, complex):
-            return {{"t": "complex", "v": [repr(value.real), repr(value.imag)]}}
-        kind = type(value).__module__.split(".")[0]
-        if kind == "numpy" and hasattr(value, "dtype") and getattr(value, "ndim", 1) == 0:
-            return {{"t": "npscalar", "dtype": str(value.dtype), "v": str(value)}}
-        if (kind == "numpy" and hasattr(value, "tolist") and value.dtype.kind in "biuf"
-                and value.size <= {max_items}):
-            return {{"t": "array", "dtype": str(value.dtype), "shape": list(value.shape),
-                     "v": [str(item) for item in value.ravel().tolist()]}}
-        if isinstance(value, (list, tuple)) and len(value) <= {max_items} and depth < 4:
-            return {{"t": "tuple" if isinstance(value, tuple) else "list",
-                     "v": [encode(item, depth + 1) for item in value]}}
-        return {{"t": "object", "type": type(value).__name__, "repr": builtins.repr(value)[:300]}}
-    found = {{}}
+# The answers' reader: installed in the student's kernel at its start, before any student code
+# (IPython exec_lines, :func:`reader_install`), as a function of ``builtins`` under a name drawn
+# at random for that kernel. Its globals are its own: the real builtins as they were at the
+# kernel's start, ``json.dumps`` and the IPython shell, so a student's variable named ``list``,
+# ``type``, ``json`` or ``__import__`` (or a rebound ``builtins.print``) changes nothing. The
+# grader calls it through ``user_expressions`` (:func:`reader_expression`): its result comes
+# back in the execute reply, a channel no print, hook or other output reaches
+# (:func:`read_reply`). A student who tampers with the kernel itself can only misreport their
+# own answers, never a verdict (the verdicts are made here, from the course's inputs).
+READER = '''
+def encode(value, depth=0):
+    if value is Ellipsis:
+        return {"t": "ellipsis"}
+    if value is None or isinstance(value, (bool, str)):
+        return {"t": "plain", "v": value}
+    if isinstance(value, int):
+        return {"t": "int", "v": str(int(value))}
+    if isinstance(value, float):
+        return {"t": "float", "v": repr(float(value))}
+    if isinstance(value, complex):
+        return {"t": "complex", "v": [repr(value.real), repr(value.imag)]}
+    kind = type(value).__module__.split(".")[0]
+    if kind == "numpy" and hasattr(value, "dtype") and getattr(value, "ndim", 1) == 0:
+        return {"t": "npscalar", "dtype": str(value.dtype), "v": str(value)}
+    if (kind == "numpy" and hasattr(value, "tolist") and value.dtype.kind in "biuf"
+            and value.size <= MAX_ITEMS):
+        return {"t": "array", "dtype": str(value.dtype), "shape": list(value.shape),
+                "v": [str(item) for item in value.ravel().tolist()]}
+    if isinstance(value, (list, tuple)) and len(value) <= MAX_ITEMS and depth < 4:
+        return {"t": "tuple" if isinstance(value, tuple) else "list",
+                "v": [encode(item, depth + 1) for item in value]}
+    return {"t": "object", "type": type(value).__name__, "repr": repr(value)[:300]}
+
+
+def answers(names):
+    namespace = shell.user_ns
+    found = {}
     for name in names:
         try:
-            found[name] = encode(scope[name]) if name in scope else {{"t": "missing"}}
+            found[name] = encode(namespace[name]) if name in namespace else {"t": "missing"}
         except Exception as error:
-            found[name] = {{"t": "object", "type": type(error).__name__, "repr": ""}}
-    builtins.print("{token}" + json.dumps(found))
-{function}({names!r}, globals())
-del {function}
+            found[name] = {"t": "object", "type": type(error).__name__, "repr": ""}
+    return dumps(found)
 '''
+
+INSTALL = '''
+def _rsgeo_install(name, source, max_items):
+    import builtins, json
+    from IPython import get_ipython
+    private = {{"__builtins__": dict(vars(builtins)), "dumps": json.dumps,
+                "shell": get_ipython(), "MAX_ITEMS": max_items}}
+    exec(source, private)
+    setattr(builtins, name, private["answers"])
+_rsgeo_install({name!r}, {source!r}, {max_items!r})
+del _rsgeo_install
+'''
+
+
+def reader_name():
+    """A fresh, unguessable name for one kernel's answers' reader."""
+    import secrets
+
+    return "_rsgeo_answers_" + secrets.token_hex(8)
+
+
+def reader_install(name):
+    """The code (an IPython ``exec_lines`` entry) that installs :data:`READER` as ``name``."""
+    return INSTALL.format(name=name, source=READER, max_items=MAX_ITEMS)
+
+
+def reader_expression(name, names):
+    """The user expression that asks the reader ``name`` for the answers ``names``."""
+    return f"{name}({list(names)!r})"
+
+
+def read_reply(result):
+    """The answers in one user expression's result: name -> encoded value, or None.
+
+    ``result`` is ``content["user_expressions"][key]`` of an execute reply: ``{"status": "ok",
+    "data": {"text/plain": repr of the JSON text}}``, or ``{"status": "error", ...}`` when the
+    reader could not run (then None).
+    """
+    if not isinstance(result, dict) or result.get("status") != "ok":
+        return None
+    try:
+        text = ast.literal_eval(result["data"]["text/plain"])
+        found = json.loads(text)
+    except (KeyError, TypeError, ValueError, SyntaxError, MemoryError, RecursionError):
+        return None
+    return found if isinstance(found, dict) else None
 
 
 class _Opaque:
@@ -100,7 +152,7 @@ def _scalar(dtype, text):
 
 
 def decode(encoded):
-    """A student's answer back from the JSON :data:`EXTRACT` prints (see there for the form).
+    """A student's answer back from the JSON :data:`READER` returns (see there for the form).
 
     Returns
     -------
@@ -279,15 +331,3 @@ def judge(task, scope, answers):
     failed = [result for result in results if not result[0]]
     ok, message, hint = failed[0] if failed else results[-1]
     return ["Correct" if ok else "Not yet", message, "" if ok else hint]
-
-
-def parse_answers(stdout, token):
-    """The answers a run of :data:`EXTRACT` printed: name -> encoded value, or None."""
-    lines = [line for line in stdout.splitlines() if line.startswith(token)]
-    if not lines:
-        return None
-    try:
-        found = json.loads(lines[-1][len(token):])
-    except ValueError:
-        return None
-    return found if isinstance(found, dict) else None
