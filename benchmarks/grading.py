@@ -26,6 +26,8 @@ def main(argv=None):
     parser.add_argument("--students", type=int, default=40)
     parser.add_argument("--notebooks", type=int, default=9, help="the first N notebooks")
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--unsafe", action="store_true",
+                        help="grade without bubblewrap, as grade.py --unsafe (timing only)")
     options = parser.parse_args(argv)
     notebooks = sorted((ROOT / "exercises").glob("*.ipynb"))[:options.notebooks]
     with tempfile.TemporaryDirectory(prefix="rsgeo-class-") as folder:
@@ -35,7 +37,8 @@ def main(argv=None):
             for notebook in notebooks:
                 shutil.copy(notebook, student / notebook.name)
         start = time.perf_counter()
-        rows = grade.grade(folder, jobs=options.jobs, show_progress=True)
+        rows = grade.grade(folder, jobs=options.jobs, show_progress=True,
+                           unsafe=options.unsafe)
         seconds = time.perf_counter() - start
     count = options.students * len(notebooks)
     print(f"{options.students} students x {len(notebooks)} notebooks ({count}), "
