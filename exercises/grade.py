@@ -259,6 +259,49 @@ def plan(course, sources):
     return steps
 
 
+# The exercise checks must compute the right answer to give feedback in the student's own
+# kernel, so the student edition holds them: a task's cells that reach into a check's internals
+# (its declaration, the task object and its ``right`` answer, the check modules themselves, a
+# check function's closure or globals) are not the student's computation. A screen of the
+# source, not a proof: code that builds these names from pieces gets past it.
+CHECKER_INTERNALS = re.compile(
+    r"\.task\s*\(|\bdeclarations?\s*\(|\.declaration\b|\brecognised_mistakes\b"
+    r"|\bDeclaration\b|\bMistake\s*\(|rsgeo_course\.exercises\.(?:engine|ex\d)"
+    r"|\bfrom\s+\.?engine\s+import|__(?:globals|closure|wrapped|code|defaults)__")
+
+USES_INTERNALS = ("this task's cells reach into the exercise check's internals ({found}): the "
+                  "grade needs your own computation, with the chapter's method")
+
+
+def internals_used(steps, sources):
+    """{task name: the first checker internal its cells use}, from :func:`plan`'s steps.
+
+    A task's cells are the student's cells run after the previous task's check and up to its
+    own.
+    """
+    found, cells = {}, []
+    for kind, value in steps:
+        if kind == "cell":
+            cells.append(sources[value])
+            continue
+        for source in cells:
+            match = CHECKER_INTERNALS.search(source)
+            if match:
+                found[value.name] = match.group(0).strip()
+                break
+        cells = []
+    return found
+
+
+def refuse_internals(rows, internals):
+    """``rows`` with every judged task in ``internals`` (:func:`internals_used`) "Not yet"."""
+    for row in rows:
+        if row.task in internals and row.verdict in ("Correct", "Not yet"):
+            row.verdict = "Not yet"
+            row.message = USES_INTERNALS.format(found=internals[row.task])
+    return rows
+
+
 # -- Running a submission ------------------------------------------------------
 
 @dataclass
@@ -519,9 +562,11 @@ def grade_notebook(path, student, courses, cell_timeout=60, notebook_timeout=600
     except Exception as error:                             # noqa: BLE001 - never stop the class
         rows = [Row(student, name, task.name, f"error: {type(error).__name__}", str(error)[:500])
                 for task in course.tasks]
+    internals = internals_used(plan(course, sources), [cell.source for cell in notebook.cells
+                                                         if cell.cell_type == "code"])
     for row in rows:
         row.file, row.note = shown_as, "; ".join(part for part in (misfiled, note) if part)
-    return rows
+    return refuse_internals(rows, internals)
 
 
 def submissions(folder):

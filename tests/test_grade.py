@@ -459,3 +459,38 @@ def test_the_mistakes_listed_are_the_hints_the_checks_give():
     assert "{" not in fitness                                # module constants are filled in
     with pytest.raises(ValueError, match="not a check"):
         exercises.recognised_mistakes("print")
+
+
+def test_a_task_that_calls_the_checks_internals_is_not_its_own_computation():
+    """The answer key travels with the checks (local feedback needs it): a task whose cells
+    reach into a check's declaration, task object or module is refused; the course's own
+    notebooks and honest uses of the same words (a raster's ``bounds.right``) are not."""
+    path = ROOT / "exercises" / "ex01_distortions.ipynb"
+    course = grade.read_course(path)
+    notebook = nbformat.read(path, as_version=4)
+    sources = [cell.source for cell in notebook.cells if cell.cell_type == "code"]
+    steps = grade.plan(course, [grade._normal(source) for source in sources])
+    assert grade.internals_used(steps, sources) == {}
+    first, second = (task.solution for task in course.tasks[:2])
+    cheats = [
+        "from rsgeo_course.exercises.ex01_distortions import SKEW\n"
+        "skew_km = SKEW.task(latitude_deg=-30.0, frame_length_km=113.0, altitude_km=778.0,\n"
+        "                    inclination_deg=98.5).right",
+        "from rsgeo_course import exercises\n"
+        "skew_km = exercises.declaration(exercises.check_skew).task(-30.0, 113, 778, 98.5).right",
+        "skew_km = check_skew.__globals__['SKEW'].task(-30.0, 113.0, 778.0, 98.5).right",
+    ]
+    for cheat in cheats:
+        changed = list(sources)
+        changed[first] = cheat
+        # an honest cell of the next task that says "right" (a raster's bounds)
+        changed[second] = "west, right = 0.0, 10.0\ngrowth_percent = right - west"
+        steps = grade.plan(course, [grade._normal(source) for source in changed])
+        found = grade.internals_used(steps, changed)
+        assert list(found) == [course.tasks[0].name], (cheat, found)
+    rows = [grade.Row("ana", path.name, task.name, "Correct", "") for task in course.tasks]
+    rows[-1].verdict = "error: NameError"
+    grade.refuse_internals(rows, {course.tasks[0].name: ".task(",
+                                  course.tasks[-1].name: ".task("})
+    assert [row.verdict for row in rows] == ["Not yet", "Correct", "error: NameError"]
+    assert "internals (.task()" in rows[0].message
