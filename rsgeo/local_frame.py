@@ -41,35 +41,13 @@ Examples
 import numpy as np
 
 from .errors import CRSError, RsgeoError
-from .language import _
-from .validation import as_crs
+from .language import N_, _
+from .validation import as_crs, as_points_3d
 
 __all__ = ["to_local_tangent_plane", "from_local_tangent_plane"]
 
-
-def _as_xyh(points, name):
-    """(n, 3) finite float64 (x, y, height) points; a single (3,) point as one row."""
-    try:
-        kind = np.asarray(points).dtype.kind
-    except (TypeError, ValueError):
-        kind = "O"
-    if kind in "cbUS":
-        raise TypeError(_("{name} must hold real numbers (x, y and height)").format(name=name))
-    try:
-        array = np.array(points, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise RsgeoError(_("{name} must be numbers in an (n, 3) array: {error}").format(
-            name=name, error=error)) from None
-    if array.shape == (3,):
-        array = array[np.newaxis, :]
-    if array.ndim != 2 or array.shape[1] != 3:
-        raise RsgeoError(_("{name} must be an (n, 3) array of (x, y, height) points, got "
-                           "shape {shape}").format(name=name, shape=array.shape))
-    if not np.isfinite(array).all():
-        rows = np.flatnonzero(~np.isfinite(array).all(axis=1))[:5].tolist()
-        raise RsgeoError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
-                           "coordinate must be a finite number").format(name=name, rows=rows))
-    return array
+#: what the three columns of points and origin are, for the messages
+_HEIGHTS = N_("x, y, height")
 
 
 def _operations(crs, origin):
@@ -85,7 +63,7 @@ def _operations(crs, origin):
                          "above the geoid with rsgeo.heights.to_ellipsoidal)").format(
                              crs=checked.name))
     to_geographic = Transformer.from_crs(checked, checked.geodetic_crs, always_xy=True)
-    origin = _as_xyh(origin, "origin")
+    origin = as_points_3d(origin, "origin", _HEIGHTS)
     if len(origin) != 1:
         raise RsgeoError(_("origin must be one (x, y, height) point, got {n}").format(
             n=len(origin)))
@@ -159,7 +137,7 @@ def to_local_tangent_plane(points, crs, origin):
     >>> to_local_tangent_plane(point, "EPSG:4979", (5.0, 55.0, 200.0)).round(3).tolist()
     [[-189013.869, -128642.04, -4220.171]]
     """
-    points = _as_xyh(points, "points")
+    points = as_points_3d(points, "points", _HEIGHTS)
     to_geographic, topocentric, name = _operations(crs, origin)
     lon, lat = to_geographic.transform(points[:, 0], points[:, 1])
     lon, lat = np.asarray(lon, dtype=np.float64), np.asarray(lat, dtype=np.float64)
@@ -214,7 +192,7 @@ def from_local_tangent_plane(points, crs, origin):
     ...                          (292_500.0, 9_114_000.0, 0.0)).round(3).tolist()
     [[292500.0, 9114000.0, 3000.0]]
     """
-    points = _as_xyh(points, "points")
+    points = as_points_3d(points, "points", _HEIGHTS)
     to_geographic, topocentric, _name = _operations(crs, origin)
     lon, lat, height = topocentric.transform(points[:, 0], points[:, 1], points[:, 2],
                                              direction="INVERSE")

@@ -16,7 +16,7 @@ from .errors import CRSError, GCPError, GridError, ImageError, RsgeoError
 from .language import N_, _
 
 __all__ = [
-    "as_points", "as_image", "as_bands_first", "as_nodata", "as_shape", "as_scale",
+    "as_points", "as_points_3d", "as_image", "as_bands_first", "as_nodata", "as_shape", "as_scale",
     "as_resolution", "as_num_threads", "as_number", "as_integer", "as_finite", "check_choice",
     "as_crs",
     "as_output_shape", "as_affine", "memory_bytes", "as_lon_lat_height", "few_values",
@@ -67,6 +67,54 @@ def as_points(points, name="points"):
     bad = ~np.isfinite(array).all(axis=1)
     if bad.any():
         rows = np.flatnonzero(bad)[:5].tolist()
+        raise GCPError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
+                         "coordinate must be a finite number").format(name=name, rows=rows))
+    return array
+
+
+def as_points_3d(points, name="points", axes="X, Y, Z"):
+    """Return ``points`` as a float64 array of shape (n, 3), finite: ground or map points.
+
+    Parameters
+    ----------
+    points : array_like
+        (n, 3) coordinates, or a single point of three.
+    name : str
+        Its name in the error messages.
+    axes : str
+        What the three columns are, for the messages (e.g. ``"x, y, height"``); translated.
+
+    Returns
+    -------
+    ndarray
+        (n, 3) float64.
+
+    Raises
+    ------
+    TypeError
+        If the array holds complex numbers, booleans or text.
+    rsgeo.errors.GCPError
+        If the array is not (n, 3) or holds NaN or infinite values.
+    """
+    try:
+        kind = np.asarray(points).dtype.kind
+    except (TypeError, ValueError):
+        kind = "O"                      # ragged or odd input: the conversion below says why
+    if kind in "cbUS":                  # NumPy would drop an imaginary part or read True as 1
+        raise TypeError(_("{name} must hold real numbers ({axes})").format(name=name,
+                                                                            axes=_(axes)))
+    try:
+        array = np.asarray(points, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise GCPError(_("{name} must be numbers in an (n, 3) array: {error}").format(
+            name=name, error=error)) from None
+    if array.shape == (3,):
+        array = array[np.newaxis, :]
+    if array.ndim != 2 or array.shape[1] != 3:
+        raise GCPError(_("{name} must be an (n, 3) array of ({axes}) points, got shape "
+                         "{shape}").format(name=name, axes=_(axes), shape=array.shape))
+    if not np.isfinite(array).all():
+        rows = np.flatnonzero(~np.isfinite(array).all(axis=1))[:5].tolist()
         raise GCPError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
                          "coordinate must be a finite number").format(name=name, rows=rows))
     return array

@@ -68,9 +68,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import GCPError, ModelError
-from ..language import _
+from ..language import N_, _
 from ..transforms import MatrixModel, fit_transform
-from ..validation import as_finite, as_integer, as_number, as_points, few_values
+from ..validation import (
+    as_finite,
+    as_integer,
+    as_number,
+    as_points,
+    as_points_3d,
+    few_values,
+)
 
 __all__ = ["PARAMETERS", "UNITS", "InteriorOrientation", "ExteriorOrientation", "FrameCamera",
            "Resection", "rotation_matrix", "angles_from_rotation", "resect"]
@@ -437,29 +444,8 @@ class ExteriorOrientation:
         return rotation_matrix(self.omega, self.phi, self.kappa)
 
 
-def _as_ground(points, name="ground"):
-    """(n, 3) finite float64 (X, Y, Z) points."""
-    try:
-        kind = np.asarray(points).dtype.kind
-    except (TypeError, ValueError):
-        kind = "O"
-    if kind in "cbUS":
-        raise TypeError(_("{name} must hold real numbers (X, Y, Z in metres)").format(name=name))
-    try:
-        array = np.asarray(points, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise GCPError(_("{name} must be numbers in an (n, 3) array: {error}").format(
-            name=name, error=error)) from None
-    if array.shape == (3,):
-        array = array[np.newaxis, :]
-    if array.ndim != 2 or array.shape[1] != 3:
-        raise GCPError(_("{name} must be an (n, 3) array of (X, Y, Z) points, got shape "
-                         "{shape}").format(name=name, shape=array.shape))
-    if not np.isfinite(array).all():
-        rows = np.flatnonzero(~np.isfinite(array).all(axis=1))[:5].tolist()
-        raise GCPError(_("{name} holds NaN or infinite coordinates (rows {rows}); every "
-                         "coordinate must be a finite number").format(name=name, rows=rows))
-    return array
+#: what the three columns of ground points are, for the messages
+_GROUND = N_("X, Y, Z in metres")
 
 
 def _collinearity(params, ground, interior, jacobian=False):
@@ -576,7 +562,7 @@ class FrameCamera:
             If a point lies behind the camera or in the plane through the projection centre
             parallel to the image (it has no image).
         """
-        ground = _as_ground(ground)
+        ground = as_points_3d(ground, "ground", _GROUND)
         image, w, _none = _collinearity(_radians(self.exterior.as_array()), ground,
                                         self.interior)
         behind = ~(w < 0)
@@ -617,7 +603,7 @@ class FrameCamera:
         GCPError
             If ``ground`` is not (n, 3) finite numbers.
         """
-        ground = _as_ground(ground)
+        ground = as_points_3d(ground, "ground", _GROUND)
         _image, _w, jac = _collinearity(_radians(self.exterior.as_array()), ground,
                                         self.interior, jacobian=True)
         jac[:, :, 3:] *= np.pi / 180.0
@@ -968,7 +954,7 @@ def resect(ground, image, interior, initial=None, max_iterations=50, tolerance=1
     if initial is not None and not isinstance(initial, ExteriorOrientation):
         raise TypeError(_("initial must be an ExteriorOrientation or None, got {kind}").format(
             kind=type(initial).__name__))
-    ground = _as_ground(ground)
+    ground = as_points_3d(ground, "ground", _GROUND)
     image = as_points(image, "image")
     max_iterations = as_integer(max_iterations, "max_iterations", low=1)
     tolerance = as_number(tolerance, "tolerance", low=0.0)
